@@ -1,0 +1,65 @@
+// pathlet passes [--describe TYPE]: what pass types the plugin search path provides.
+#include "args.hpp"
+#include "commands.hpp"
+#include "graph/graph_model.hpp"
+#include "runtime.hpp"
+
+#include <cstdio>
+
+namespace pathlet::cli {
+namespace {
+
+int run(const std::vector<std::string>& argv) {
+    Args a("passes", "Lists the pass types found on the plugin search path, with the file each comes from.");
+    a.option("describe", "TYPE", "", "print the parameters and pins of one pass type")
+        .multi("plugin-dir", "DIR", "also load plugins from DIR (before PATHLET_PLUGIN_PATH and the built-in folder)")
+        .flag("json", "print the declarations as JSON (for tools and docs)")
+        .example("pathlet passes", "list all pass types")
+        .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
+    if (!a.parse(argv)) return 0;
+    Runtime rt;
+    rt.load_plugins(a.all("plugin-dir"));
+    if (a.has("describe")) {
+        const PassTypeInfo* t = rt.registry.find(a.get("describe"));
+        if (!t) {
+            std::string hint = closest_match(a.get("describe"), rt.registry.names());
+            std::fprintf(stderr, "pathlet passes: no pass type '%s'%s%s\n", a.get("describe").c_str(),
+                         hint.empty() ? "" : ("; did you mean '" + hint + "'?").c_str(),
+                         rt.plugin_problems_note().c_str());
+            return 1;
+        }
+        std::fputs(t->describe().c_str(), stdout);
+        return 0;
+    }
+    if (a.has("json")) {
+        json out = json::array();
+        for (const auto* t : rt.registry.all()) {
+            json pt = {{"type", t->type}, {"doc", t->doc}, {"file", t->plugin_file}, {"params", json::array()}, {"pins", json::array()}};
+            for (const auto& p : t->params)
+                pt["params"].push_back({{"name", p.name}, {"type", to_string(p.type)}, {"default", p.def}, {"doc", p.doc}});
+            for (const auto& p : t->pins)
+                pt["pins"].push_back({{"name", p.name}, {"dir", p.dir == PinDir::Input ? "in" : "out"},
+                                      {"kind", p.kind == PinKind::Texture ? "texture" : "buffer"}, {"format", p.format},
+                                      {"optional", p.optional}, {"doc", p.doc}});
+            out.push_back(pt);
+        }
+        std::printf("%s\n", out.dump(2).c_str());
+        return rt.host.problems().empty() ? 0 : 1;
+    }
+    std::printf("%-16s %-60s %s\n", "TYPE", "WHAT IT DOES", "FILE");
+    for (const auto* t : rt.registry.all()) {
+        std::string doc = t->doc.size() > 58 ? t->doc.substr(0, 57) + "…" : t->doc;
+        std::printf("%-16s %-60s %s\n", t->type.c_str(), doc.c_str(), t->plugin_file.c_str());
+    }
+    if (rt.registry.all().empty()) {
+        std::printf("(no pass types found) searched:\n");
+        for (const auto& d : PluginHost::search_path(a.all("plugin-dir"))) std::printf("  %s\n", d.c_str());
+    }
+    for (const auto& p : rt.host.problems()) std::fprintf(stderr, "error: %s\n", p.c_str());
+    return rt.host.problems().empty() ? 0 : 1;
+}
+
+PATHLET_COMMAND("passes", "list pass plugins, or describe one (--describe TYPE)", run);
+
+}  // namespace
+}  // namespace pathlet::cli

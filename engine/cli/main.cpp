@@ -1,0 +1,60 @@
+// pathlet: the command-line front end. Each subcommand lives in its own cmd_*.cpp.
+#include "args.hpp"
+#include "commands.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace pathlet::cli {
+std::vector<Command>& commands() {
+    static std::vector<Command> c;
+    return c;
+}
+}  // namespace pathlet::cli
+
+using namespace pathlet::cli;
+
+static void print_overview() {
+    std::printf(
+        "pathlet %s — render-graph framework for LineAO-lit animated pathlines\n\n"
+        "usage: pathlet <command> [arguments] [--help]\n\ncommands:\n",
+        PATHLET_VERSION);
+    auto cmds = commands();
+    std::sort(cmds.begin(), cmds.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
+    for (const auto& c : cmds) std::printf("  %-10s %s\n", c.name.c_str(), c.summary.c_str());
+    std::printf(
+        "\nfirst steps:\n"
+        "  pathlet render                       render the built-in aortic-arch phantom with LineAO (variant 1)\n"
+        "  pathlet passes                       list the pass plugins found, with their files\n"
+        "  pathlet passes --describe lineao     parameters and pins of one pass type\n"
+        "  pathlet graph graphs/variant1_lineao.json --plan   execution order, lifetimes, memory\n"
+        "\n'pathlet <command> --help' explains each command.\n");
+}
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        print_overview();
+        return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version") {
+        std::printf("pathlet %s\n", PATHLET_VERSION);
+        return 0;
+    }
+    for (const auto& c : commands()) {
+        if (c.name != args[0]) continue;
+        try {
+            return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
+        } catch (const UsageError& e) {
+            std::fprintf(stderr, "pathlet %s: %s\n(see 'pathlet %s --help')\n", c.name.c_str(), e.what(), c.name.c_str());
+            return 2;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "pathlet %s: error: %s\n", c.name.c_str(), e.what());
+            return 1;
+        }
+    }
+    std::fprintf(stderr, "pathlet: unknown command '%s' (see 'pathlet --help')\n", args[0].c_str());
+    return 2;
+}

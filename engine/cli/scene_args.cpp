@@ -1,0 +1,54 @@
+#include "scene_args.hpp"
+
+#include "io/mesh_io.hpp"
+#include "io/pathline_io.hpp"
+#include "phantom/phantom.hpp"
+#include "progress.hpp"
+
+#include <cstdio>
+
+namespace pathlet::cli {
+
+void add_scene_options(Args& a) {
+    a.option("data", "FILE", "", "pathlines: .vtk (legacy), .vtp, .pathlet, or text rows 'x y z x y z ...'")
+        .option("mesh", "FILE", "", "vessel wall: .gltf/.glb, .stl or .obj (optional)")
+        .option("phantom", "study|small", "study", "built-in aortic-arch phantom used when --data is not given")
+        .option("time-array", "NAME", "", "point array holding time (default: time, Time, t, IntegrationTime)")
+        .option("velocity-array", "NAME", "", "point array holding velocity (default: velocity, Velocity, U, v)")
+        .option("time-step", "SECONDS", "0", "text rows: seconds between samples (0: 0.01)");
+}
+
+Scene load_scene(const Args& a, bool quiet) {
+    Scene scene;
+    if (a.get("data").empty()) {
+        // Generated once (tracing takes a while on two cores), then read from the cache.
+        std::string preset = a.get("phantom");
+        Progress bar("phantom '" + preset + "'", 1000, quiet);
+        scene = phantom::load_or_make_phantom(preset, [&](double f, std::string_view stage) {
+            bar.update(size_t(f * 1000.0), std::string(stage));
+        });
+        bar.finish(std::to_string(scene.lines.line_count()) + " lines");
+    } else {
+        io::LoadOptions o;
+        o.time_array = a.get("time-array");
+        o.velocity_array = a.get("velocity-array");
+        o.time_step = a.number("time-step");
+        io::LoadReport rep;
+        scene.lines = io::load_pathlines(a.get("data"), o, &rep);
+        scene.source = a.get("data");
+        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", a.get("data").c_str(), w.c_str());
+    }
+    if (!a.get("mesh").empty()) {
+        io::LoadReport rep;
+        scene.mesh = io::load_mesh(a.get("mesh"), &rep);
+        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", a.get("mesh").c_str(), w.c_str());
+    }
+    if (!quiet)
+        std::fprintf(stderr, "data: %s — %zu lines, %zu points, t %.2f..%.2f s, speed %.3g..%.3g%s\n", scene.source.c_str(),
+                     scene.lines.line_count(), scene.lines.point_count(), scene.lines.time_min(),
+                     scene.lines.time_max(), scene.lines.speed_min(), scene.lines.speed_max(),
+                     scene.mesh ? (", wall " + std::to_string(scene.mesh->index.size() / 3) + " triangles").c_str() : "");
+    return scene;
+}
+
+}  // namespace pathlet::cli

@@ -1,0 +1,43 @@
+# pathlet_add_pass(<name> SOURCES a.cpp ... [SHADERS x.frag ...])
+#
+# Builds a pass plugin: a MODULE library named <name>.so whose shaders travel with it in a
+# folder <name>/ beside it (build tree and install tree alike), so the engine finds them.
+# Used by the built-in passes and, through find_package(pathlet), by out-of-tree plugins.
+function(pathlet_add_pass name)
+  cmake_parse_arguments(P "" "" "SOURCES;SHADERS" ${ARGN})
+  if(NOT PATHLET_PASS_OUTPUT_DIR)
+    set(PATHLET_PASS_OUTPUT_DIR ${CMAKE_BINARY_DIR}/passes)
+  endif()
+  if(NOT PATHLET_PASS_INSTALL_DIR)
+    set(PATHLET_PASS_INSTALL_DIR lib/pathlet/passes)
+  endif()
+  add_library(${name} MODULE ${P_SOURCES})
+  target_link_libraries(${name} PRIVATE pathlet::pathlet)
+  set_target_properties(${name} PROPERTIES
+    PREFIX ""
+    LIBRARY_OUTPUT_DIRECTORY ${PATHLET_PASS_OUTPUT_DIR}
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON
+    BUILD_RPATH_USE_ORIGIN ON
+    INSTALL_RPATH "$ORIGIN/../..")
+  # Unresolved symbols fail at link time, not at load time.
+  target_link_options(${name} PRIVATE "LINKER:-z,defs")
+  foreach(shader ${P_SHADERS})
+    get_filename_component(abs ${shader} ABSOLUTE)
+    get_filename_component(fname ${shader} NAME)
+    add_custom_command(TARGET ${name} POST_BUILD
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${PATHLET_PASS_OUTPUT_DIR}/${name}
+      COMMAND ${CMAKE_COMMAND} -E copy_if_different ${abs} ${PATHLET_PASS_OUTPUT_DIR}/${name}/${fname})
+  endforeach()
+  # Shaders edited without a C++ change still get copied.
+  if(P_SHADERS)
+    add_custom_target(${name}_shaders ALL
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${PATHLET_PASS_OUTPUT_DIR}/${name}
+      COMMAND ${CMAKE_COMMAND} -E copy_if_different ${P_SHADERS} ${PATHLET_PASS_OUTPUT_DIR}/${name}/
+      WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+  endif()
+  install(TARGETS ${name} LIBRARY DESTINATION ${PATHLET_PASS_INSTALL_DIR})
+  if(P_SHADERS)
+    install(FILES ${P_SHADERS} DESTINATION ${PATHLET_PASS_INSTALL_DIR}/${name})
+  endif()
+endfunction()

@@ -1,0 +1,296 @@
+#include "raw_polylines.hpp"
+
+#include "byte_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pathlet::io {
+
+void append_piece(RawPolylines& dst, RawPolylines&& piece, LoadReport& report) {
+    const int64_t base_point = int64_t(dst.point_count());
+    const int64_t base_conn = int64_t(dst.connectivity.size());
+    const bool first = dst.points.empty() && dst.line_count() == 0 && dst.point_arrays.empty();
+    dst.points.insert(dst.points.end(), piece.points.begin(), piece.points.end());
+    for (size_t i = 1; i < piece.offsets.size(); ++i) dst.offsets.push_back(piece.offsets[i] + base_conn);
+    for (auto c : piece.connectivity) dst.connectivity.push_back(c < 0 ? c : c + base_point);
+    dst.polygons += piece.polygons;
+    if (first) {
+        dst.point_arrays = std::move(piece.point_arrays);
+        dst.where_lines = piece.where_lines;
+        dst.where_data = piece.where_data;
+        return;
+    }
+    std::vector<RawArray> kept;
+    for (auto& a : dst.point_arrays) {
+        auto it = std::find_if(piece.point_arrays.begin(), piece.point_arrays.end(),
+                               [&](const RawArray& b) { return b.name == a.name && b.components == a.components; });
+        if (it == piece.point_arrays.end()) {
+            report.warnings.push_back("dropped point array '" + a.name + "': missing from a later piece");
+            continue;
+        }
+        a.values.insert(a.values.end(), it->values.begin(), it->values.end());
+        kept.push_back(std::move(a));
+    }
+    dst.point_arrays = std::move(kept);
+}
+
+void validate_topology(const RawPolylines& raw, const std::string& file) {
+    const auto& off = raw.offsets;
+    if (off.empty() || off.front() != 0)
+        fail_at(file, raw.where_lines, "line offsets must start at 0 (got " + std::to_string(off.empty() ? -1 : off.front()) + ")");
+    for (size_t i = 1; i < off.size(); ++i)
+        if (off[i] < off[i - 1])
+            fail_at(file, raw.where_lines, "line offsets are not monotone: offset " + std::to_string(i) + " is " +
+                                               std::to_string(off[i]) + " after " + std::to_string(off[i - 1]));
+    if (uint64_t(off.back()) != raw.connectivity.size())
+        fail_at(file, raw.where_lines, "line offsets end at " + std::to_string(off.back()) + " but the connectivity has " +
+                                           std::to_string(raw.connectivity.size()) + " entries");
+    const int64_t n = int64_t(raw.point_count());
+    for (size_t i = 0; i < raw.connectivity.size(); ++i) {
+        int64_t c = raw.connectivity[i];
+        if (c < 0 || c >= n)
+            fail_at(file, raw.where_lines, "line connectivity entry " + std::to_string(i) + " is point index " +
+                                               std::to_string(c) + ", but there are only " + std::to_string(n) + " points");
+    }
+    for (auto& a : raw.point_arrays)
+        if (a.values.size() != raw.point_count() * size_t(a.components))
+            fail_at(file, raw.where_data, "point array '" + a.name + "' has " + std::to_string(a.values.size() / std::max(a.components, 1)) +
+                                              " tuples but there are " + std::to_string(raw.point_count()) + " points");
+}
+
+static const RawArray* pick(const std::vector<RawArray>& arrays, const std::string& wanted,
+                            std::initializer_list<const char*> automatic, int comps, const char* role,
+                            const char* option, const std::string& file, const std::string& where) {
+    if (!wanted.empty()) {
+        for (auto& a : arrays)
+            if (a.name == wanted || iequals(a.name, wanted)) {
+                if (a.components != comps)
+                    fail_at(file, where, std::string(role) + " array '" + a.name + "' has " + std::to_string(a.components) +
+                                             " components, expected " + std::to_string(comps));
+                return &a;
+            }
+        std::string names;
+        for (auto& a : arrays) names += (names.empty() ? "" : ", ") + a.name;
+        fail_at(file, where, std::string("no point array named '") + wanted + "' (" + option + "); arrays present: " +
+                                 (names.empty() ? "none" : names));
+    }
+    for (const char* name : automatic)
+        for (auto& a : arrays)
+            if (iequals(a.name, name) && a.components == comps) return &a;
+    return nullptr;
+}
+
+Pathlines assemble_pathlines(RawPolylines&& raw, const LoadOptions& opts, LoadReport& report, const std::string& file) {
+    validate_topology(raw, file);
+    for (auto& a : raw.point_arrays)
+        report.arrays.push_back(a.name + " (" + std::to_string(a.components) + " comp)");
+    Pathlines out;
+    if (raw.line_count() == 0) {
+        if (raw.polygons > 0)
+            fail_at(file, raw.where_lines, "holds " + std::to_string(raw.polygons) +
+                                               " polygons and no lines: this is a surface, not pathlines; load it as a mesh "
+                                               "(e.g. export STL/OBJ/glTF)");
+        report.warnings.push_back("the file holds no lines: empty pathline set");
+        return out;
+    }
+    const RawArray* t = pick(raw.point_arrays, opts.time_array, {"time", "t", "integrationtime"}, 1, "time",
+                             "--time-array / LoadOptions::time_array", file, raw.where_data);
+    const RawArray* v = pick(raw.point_arrays, opts.velocity_array, {"velocity", "vel", "u", "v"}, 3, "velocity",
+                             "--velocity-array / LoadOptions::velocity_array", file, raw.where_data);
+    if (!t && !v) {
+        std::string names;
+        for (auto& s : report.arrays) names += (names.empty() ? "" : ", ") + s;
+        fail_at(file, raw.where_data,
+                "no time array and no velocity array, so pathline time cannot be derived. Point arrays present: " +
+                    (names.empty() ? std::string("none") : names) +
+                    ". Name the time array with --time-array NAME (LoadOptions::time_array) or the velocity with "
+                    "--velocity-array NAME");
+    }
+    const size_t total = raw.connectivity.size();
+    out.position.resize(total);
+    if (t) out.time.resize(total);
+    if (v) out.velocity.resize(total);
+    out.lines.reserve(raw.line_count());
+    const float* P = raw.points.data();
+    for (size_t k = 0; k < total; ++k) {
+        size_t i = size_t(raw.connectivity[k]);
+        out.position[k] = {P[3 * i], P[3 * i + 1], P[3 * i + 2]};
+        if (t) out.time[k] = t->values[i];
+        if (v) out.velocity[k] = {v->values[3 * i], v->values[3 * i + 1], v->values[3 * i + 2]};
+    }
+    for (size_t l = 0; l + 1 < raw.offsets.size(); ++l)
+        out.lines.push_back({uint32_t(raw.offsets[l]), uint32_t(raw.offsets[l + 1] - raw.offsets[l])});
+    repair_pathlines(out, report, file);
+    return out;
+}
+
+namespace {
+
+bool finite3(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+struct Counts {
+    size_t nonfinite_points = 0, nonfinite_lines = 0, split_extra = 0;
+    size_t dup_points = 0, dup_lines = 0, equal_time_points = 0;
+    size_t short_lines = 0, short_points = 0, reversed = 0, sorted = 0;
+};
+
+// Fast path: nothing to repair (the common case for our own caches and clean exports).
+bool is_clean(const Pathlines& pl, float eps2) {
+    const bool ht = !pl.time.empty(), hv = !pl.velocity.empty();
+    if (!ht || !hv) return false;
+    uint64_t expect = 0;
+    for (auto& r : pl.lines) {
+        if (r.first != expect || r.count < 2) return false;
+        expect += r.count;
+        for (uint32_t k = r.first; k < r.first + r.count; ++k) {
+            if (!finite3(pl.position[k]) || !std::isfinite(pl.time[k]) || !finite3(pl.velocity[k])) return false;
+            if (k > r.first) {
+                glm::vec3 d = pl.position[k] - pl.position[k - 1];
+                if (glm::dot(d, d) <= eps2 || !(pl.time[k] > pl.time[k - 1])) return false;
+            }
+        }
+    }
+    return expect == pl.position.size();
+}
+
+}  // namespace
+
+void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file) {
+    if (pl.lines.empty()) {  // nothing drawable; callers have already warned
+        pl = Pathlines{};
+        return;
+    }
+    const bool has_time = !pl.time.empty(), has_vel = !pl.velocity.empty();
+    if ((has_time && pl.time.size() != pl.position.size()) || (has_vel && pl.velocity.size() != pl.position.size()))
+        fail_at(file, "byte 0", "time/velocity sizes disagree with the point count");
+    for (auto& r : pl.lines)
+        if (uint64_t(r.first) + r.count > pl.position.size())
+            fail_at(file, "byte 0", "line range beyond the point count");
+
+    // Zero-length threshold relative to the data extent: a millionth of the diagonal.
+    Bounds b = pl.bounds();
+    float diag = b.valid() ? glm::length(b.hi - b.lo) : 0.0f;
+    float eps = 1e-6f * diag;
+    float eps2 = eps * eps;
+    if (is_clean(pl, eps2)) return;
+
+    Counts c;
+    Pathlines out;
+    out.position.reserve(pl.position.size());
+    if (has_time) out.time.reserve(pl.time.size());
+    if (has_vel) out.velocity.reserve(pl.velocity.size());
+    std::vector<uint32_t> seg;
+
+    auto flush = [&](bool& line_had_dup) {
+        if (has_time && seg.size() > 1) {
+            bool inc = true, dec = true;
+            for (size_t i = 1; i < seg.size(); ++i) {
+                if (pl.time[seg[i]] < pl.time[seg[i - 1]]) inc = false;
+                if (pl.time[seg[i]] > pl.time[seg[i - 1]]) dec = false;
+            }
+            if (!inc && dec) { std::reverse(seg.begin(), seg.end()); ++c.reversed; }
+            else if (!inc) {
+                std::stable_sort(seg.begin(), seg.end(), [&](uint32_t a, uint32_t b2) { return pl.time[a] < pl.time[b2]; });
+                ++c.sorted;
+            }
+        }
+        size_t first = out.position.size();
+        for (size_t i = 0; i < seg.size(); ++i) {
+            uint32_t k = seg[i];
+            if (out.position.size() > first) {
+                size_t last = out.position.size() - 1;
+                glm::vec3 d = pl.position[k] - out.position[last];
+                if (glm::dot(d, d) <= eps2) { ++c.dup_points; line_had_dup = true; continue; }
+                if (has_time && !(pl.time[k] > out.time[last])) { ++c.equal_time_points; continue; }
+            }
+            out.position.push_back(pl.position[k]);
+            if (has_time) out.time.push_back(pl.time[k]);
+            if (has_vel) out.velocity.push_back(pl.velocity[k]);
+        }
+        size_t n = out.position.size() - first;
+        if (n < 2) {
+            if (!seg.empty()) { ++c.short_lines; c.short_points += n; }
+            out.position.resize(first);
+            if (has_time) out.time.resize(first);
+            if (has_vel) out.velocity.resize(first);
+        } else {
+            out.lines.push_back({uint32_t(first), uint32_t(n)});
+        }
+        seg.clear();
+    };
+
+    for (auto& r : pl.lines) {
+        bool had_bad = false, had_dup = false;
+        size_t pieces = 0;
+        for (uint32_t k = r.first; k < r.first + r.count; ++k) {
+            bool ok = finite3(pl.position[k]) && (!has_time || std::isfinite(pl.time[k])) && (!has_vel || finite3(pl.velocity[k]));
+            if (ok) { seg.push_back(k); continue; }
+            ++c.nonfinite_points;
+            had_bad = true;
+            if (!seg.empty()) { flush(had_dup); ++pieces; }
+        }
+        if (!seg.empty()) { flush(had_dup); ++pieces; }
+        else if (r.count < 2 && !had_bad) { ++c.short_lines; c.short_points += r.count; }
+        if (had_bad) { ++c.nonfinite_lines; if (pieces > 1) c.split_extra += pieces - 1; }
+        if (had_dup) ++c.dup_lines;
+    }
+
+    auto& w = report.warnings;
+    if (c.nonfinite_points)
+        w.push_back("dropped " + std::to_string(c.nonfinite_points) + " non-finite (NaN/inf) points in " +
+                    std::to_string(c.nonfinite_lines) + " lines" +
+                    (c.split_extra ? " (split into " + std::to_string(c.split_extra) + " extra lines)" : ""));
+    if (c.dup_points)
+        w.push_back("dropped " + std::to_string(c.dup_points) + " duplicate consecutive points (zero-length segments) in " +
+                    std::to_string(c.dup_lines) + " lines");
+    if (c.equal_time_points)
+        w.push_back("dropped " + std::to_string(c.equal_time_points) + " points whose time repeats the previous point's");
+    if (c.reversed) w.push_back("reversed " + std::to_string(c.reversed) + " lines whose time decreased along the line");
+    if (c.sorted) w.push_back("sorted " + std::to_string(c.sorted) + " lines by time (time was not monotonic)");
+    if (c.short_lines)
+        w.push_back("dropped " + std::to_string(c.short_lines) + " lines with fewer than 2 distinct points");
+
+    if (!has_time) {
+        // Time from arc length / speed: dt = |dp| / mean(|v_k|, |v_k+1|). A stagnant pair
+        // (both speeds 0) uses the median speed of the whole set so time stays increasing.
+        std::vector<float> speeds;
+        speeds.reserve(out.velocity.size());
+        for (auto& v : out.velocity) if (glm::length(v) > 0) speeds.push_back(glm::length(v));
+        float fallback = 1.0f;
+        if (!speeds.empty()) {
+            std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
+            fallback = speeds[speeds.size() / 2];
+        }
+        out.time.resize(out.position.size());
+        for (auto& r : out.lines) {
+            double t = 0.0;
+            out.time[r.first] = 0.0f;
+            for (uint32_t k = r.first + 1; k < r.first + r.count; ++k) {
+                float s = 0.5f * (glm::length(out.velocity[k]) + glm::length(out.velocity[k - 1]));
+                if (!(s > 0)) s = fallback;
+                t += glm::length(out.position[k] - out.position[k - 1]) / s;
+                out.time[k] = float(t);
+                if (!(out.time[k] > out.time[k - 1])) out.time[k] = std::nextafter(out.time[k - 1], INFINITY);
+            }
+        }
+        w.push_back("no time array: derived time from arc length / speed (each line starts at t = 0)");
+    }
+    if (!has_vel) {
+        // Central differences inside a line, one-sided at its ends.
+        out.velocity.resize(out.position.size());
+        for (auto& r : out.lines) {
+            uint32_t a = r.first, e = r.first + r.count - 1;
+            for (uint32_t k = a; k <= e; ++k) {
+                uint32_t i0 = k == a ? a : k - 1, i1 = k == e ? e : k + 1;
+                out.velocity[k] = (out.position[i1] - out.position[i0]) / (out.time[i1] - out.time[i0]);
+            }
+        }
+        w.push_back("no velocity array: derived velocity by finite differences of position over time");
+    }
+    if (out.lines.empty() && !pl.lines.empty()) w.push_back("no drawable lines remain after repair: empty pathline set");
+    pl = std::move(out);
+}
+
+}  // namespace pathlet::io

@@ -1,0 +1,47 @@
+// Disk cache of generated phantoms: generation takes seconds, loading milliseconds.
+#include "phantom.hpp"
+
+#include "io/mesh_io.hpp"
+#include "io/pathline_io.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace pathlet::phantom {
+
+// Bump when the generator's output changes, so stale caches are never reused.
+static constexpr const char* kPhantomVersion = "v1";
+
+std::string phantom_cache_path(const std::string& preset) {
+    phantom_preset(preset);  // validates the name
+    std::filesystem::path dir;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) dir = std::filesystem::path(xdg) / "pathlet";
+    else if (const char* home = std::getenv("HOME"); home && *home) dir = std::filesystem::path(home) / ".cache" / "pathlet";
+    else dir = std::filesystem::temp_directory_path() / "pathlet-cache";
+    return (dir / ("phantom-" + preset + "-" + kPhantomVersion + ".pathlet")).string();
+}
+
+Scene load_or_make_phantom(const std::string& preset, const trace::Progress& progress) {
+    const std::string path = phantom_cache_path(preset);
+    const std::string wall = std::filesystem::path(path).replace_extension(".glb").string();
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && std::filesystem::exists(wall, ec)) {
+        try {
+            Scene s;
+            s.lines = io::load_pathlines(path);
+            s.mesh = io::load_mesh(wall);
+            s.source = path;
+            return s;
+        } catch (const DataError&) {
+            // A damaged cache is regenerated below.
+        }
+    }
+    Scene s = make_phantom(phantom_preset(preset), progress);
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    // Wall first: the pathline file appearing last marks the pair complete.
+    if (s.mesh) io::save_mesh(*s.mesh, wall);
+    io::save_pathlines(s.lines, path, io::PathlineFormat::Native);
+    return s;
+}
+
+}  // namespace pathlet::phantom

@@ -1,0 +1,57 @@
+// The scene on the GPU: uploaded once, drawn per frame as per-line sub-ranges of the
+// point buffer (a time window is a binary search per line on the CPU, then one
+// glMultiDrawArrays; far cheaper on llvmpipe than discarding fragments by time).
+#pragma once
+
+#include <pathlet/gl.hpp>
+#include <pathlet/scene.hpp>
+
+#include <vector>
+
+namespace pathlet {
+
+// Vertex layout of line_vao(): location 0 position (vec3), 1 time (float),
+// 2 velocity (vec3), 3 tangent (vec3, unit, along the line), 4 line id (int, as float-free ivec via glVertexAttribIPointer).
+class GpuScene {
+public:
+    GpuScene() = default;
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+    ~GpuScene();
+
+    void upload(const Scene& scene);  // needs a current GL context
+    const Scene& cpu() const { return *cpu_; }
+    bool has_mesh() const { return mesh_index_count_ > 0; }
+
+    GLuint line_vao() const { return line_vao_; }
+    GLuint mesh_vao() const { return mesh_vao_; }  // location 0 position, 1 normal; indexed
+    GLsizei mesh_index_count() const { return mesh_index_count_; }
+
+    // Per-line point ranges whose segments overlap [t0, t1] (a segment is kept when any
+    // part of it lies in the window). window <= 0 means every line whole.
+    struct Ranges {
+        std::vector<GLint> first;
+        std::vector<GLsizei> count;
+        size_t segments = 0;
+    };
+    void ranges(double t0, double t1, Ranges& out) const;
+    // Draws the ranges as GL_LINE_STRIPs with line_vao() bound (the caller binds a program).
+    void draw_lines(const Ranges& r) const;
+
+    Bounds bounds() const { return bounds_; }
+    float time_min() const { return tmin_; }
+    float time_max() const { return tmax_; }
+    float speed_min() const { return smin_; }
+    float speed_max() const { return smax_; }
+
+private:
+    void release();
+    const Scene* cpu_ = nullptr;
+    GLuint line_vao_ = 0, line_vbo_ = 0;
+    GLuint mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
+    GLsizei mesh_index_count_ = 0;
+    Bounds bounds_;
+    float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
+};
+
+}  // namespace pathlet

@@ -1,0 +1,53 @@
+// GLSL programs loaded from files on the shader search path, with `#include "file"`
+// resolved there too. Each source file gets a number in #line directives, so compile
+// errors are reported as "<file>:<line>: <message>" (ShaderError).
+#pragma once
+
+#include <pathlet/gl.hpp>
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+struct ShaderError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class ShaderProgram {
+public:
+    ShaderProgram() = default;
+    ShaderProgram(const ShaderProgram&) = delete;
+    ShaderProgram& operator=(const ShaderProgram&) = delete;
+    ShaderProgram(ShaderProgram&& o) noexcept;
+    ShaderProgram& operator=(ShaderProgram&& o) noexcept;
+    ~ShaderProgram();
+
+    // Stage by extension: .vert .geom .frag .comp. `dirs` are searched in order.
+    static ShaderProgram from_files(const std::vector<std::string>& files, const std::vector<std::string>& dirs,
+                                    const std::vector<std::string>& defines = {});
+
+    GLuint id() const { return id_; }
+    void use() const { glUseProgram(id_); }
+    GLint loc(const std::string& uniform) const;  // cached; -1 if optimised away
+    void set(const std::string& n, int v) const;
+    void set(const std::string& n, float v) const;
+    void set(const std::string& n, glm::vec2 v) const;
+    void set(const std::string& n, glm::vec3 v) const;
+    void set(const std::string& n, glm::vec4 v) const;
+    void set(const std::string& n, glm::ivec2 v) const;
+    void set(const std::string& n, const glm::mat4& v) const;
+
+private:
+    GLuint id_ = 0;
+    mutable std::map<std::string, GLint> locs_;
+};
+
+// Finds a file on the search path; throws ShaderError listing the directories searched.
+std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs);
+
+}  // namespace pathlet

@@ -1,0 +1,75 @@
+// Runs a compiled graph: owns the physical GL objects (one per pool slot, two per history
+// resource), instantiates the passes, calls setup() once and execute() every frame, each
+// inside a profiler scope, with GL errors and exceptions turned into messages that name
+// the pass.
+#pragma once
+
+#include "graph/graph_model.hpp"
+
+#include <pathlet/gpu_scene.hpp>
+#include <pathlet/pass.hpp>
+#include <pathlet/shader.hpp>
+
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+class GlContext;
+class Profiler;
+
+struct PassError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct FrameInfo {
+    uint64_t index = 0;
+    double time = 0.0;
+    Camera camera;
+};
+
+class Executor {
+public:
+    // `cg`, `scene` and `gl` must outlive the executor. `profiler` may be null.
+    Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene, Profiler* profiler = nullptr);
+    ~Executor();
+    Executor(const Executor&) = delete;
+    Executor& operator=(const Executor&) = delete;
+
+    void setup();                         // resources, pass instances, Pass::setup()
+    void run_frame(const FrameInfo& f);   // every pass in order, then history swap
+
+    const CompiledGraph& graph() const { return cg_; }
+    Texture texture(const std::string& resource) const;  // current content (after run_frame)
+    Buffer buffer(const std::string& resource) const;
+    std::vector<std::string> shader_dirs_for(const PassTypeInfo& type) const;
+
+private:
+    friend struct PassContextImpl;
+    friend class PassContext;
+    struct Physical {
+        Texture tex;
+        Buffer buf;
+    };
+    Physical make_physical(const PoolSlot& s, const std::string& label);
+    const Physical& physical(int resource, bool previous) const;
+    GLuint framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass);
+    void check_gl(const std::string& pass, const char* phase);
+
+    GlContext& gl_;
+    const CompiledGraph& cg_;
+    const GpuScene& scene_;
+    Profiler* profiler_;
+    std::vector<Physical> slots_;                 // by slot index
+    std::map<int, Physical> history_prev_;        // resource -> last frame's object
+    std::vector<std::unique_ptr<Pass>> passes_;
+    std::vector<std::unique_ptr<PassContextImpl>> contexts_;
+    std::map<std::vector<GLuint>, GLuint> fbos_;
+    GLuint empty_vao_ = 0;
+    FrameInfo frame_;
+};
+
+}  // namespace pathlet

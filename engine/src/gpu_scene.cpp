@@ -1,0 +1,134 @@
+#include <pathlet/gpu_scene.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pathlet {
+
+namespace {
+struct LineVertex {
+    glm::vec3 position;
+    float time;
+    glm::vec3 velocity;
+    glm::vec3 tangent;
+    int32_t line_id;
+};
+static_assert(sizeof(LineVertex) == 44);
+
+glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
+    float l = glm::length(v);
+    return l > 1e-12f ? v / l : fallback;
+}
+}  // namespace
+
+GpuScene::~GpuScene() { release(); }
+
+void GpuScene::release() {
+    if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
+    if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
+    if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
+    if (mesh_vbo_) glDeleteBuffers(1, &mesh_vbo_);
+    if (mesh_ibo_) glDeleteBuffers(1, &mesh_ibo_);
+    line_vao_ = line_vbo_ = mesh_vao_ = mesh_vbo_ = mesh_ibo_ = 0;
+    mesh_index_count_ = 0;
+}
+
+void GpuScene::upload(const Scene& scene) {
+    release();
+    cpu_ = &scene;
+    const Pathlines& pl = scene.lines;
+    bounds_ = scene.bounds();
+    tmin_ = pl.time_min();
+    tmax_ = pl.time_max();
+    smin_ = pl.speed_min();
+    smax_ = pl.speed_max();
+
+    // Interleave once; the tangent is the central difference (one-sided at the ends), so the
+    // geometry shader gets smooth joins without adjacency primitives.
+    std::vector<LineVertex> v(pl.position.size());
+    for (size_t li = 0; li < pl.lines.size(); ++li) {
+        const LineRange r = pl.lines[li];
+        for (uint32_t k = 0; k < r.count; ++k) {
+            size_t i = r.first + k;
+            size_t a = r.first + (k > 0 ? k - 1 : 0), b = r.first + std::min(k + 1, r.count - 1);
+            glm::vec3 vel = i < pl.velocity.size() ? pl.velocity[i] : glm::vec3(0);
+            v[i] = {pl.position[i], i < pl.time.size() ? pl.time[i] : 0.0f, vel,
+                    safe_normalize(pl.position[b] - pl.position[a], glm::vec3(1, 0, 0)), int32_t(li)};
+        }
+    }
+    glCreateBuffers(1, &line_vbo_);
+    glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
+                         v.empty() ? nullptr : v.data(), 0);
+    glCreateVertexArrays(1, &line_vao_);
+    glVertexArrayVertexBuffer(line_vao_, 0, line_vbo_, 0, sizeof(LineVertex));
+    auto attrib = [&](GLuint loc, GLint n, GLuint offset) {
+        glEnableVertexArrayAttrib(line_vao_, loc);
+        glVertexArrayAttribFormat(line_vao_, loc, n, GL_FLOAT, GL_FALSE, offset);
+        glVertexArrayAttribBinding(line_vao_, loc, 0);
+    };
+    attrib(0, 3, offsetof(LineVertex, position));
+    attrib(1, 1, offsetof(LineVertex, time));
+    attrib(2, 3, offsetof(LineVertex, velocity));
+    attrib(3, 3, offsetof(LineVertex, tangent));
+    glEnableVertexArrayAttrib(line_vao_, 4);
+    glVertexArrayAttribIFormat(line_vao_, 4, 1, GL_INT, offsetof(LineVertex, line_id));
+    glVertexArrayAttribBinding(line_vao_, 4, 0);
+
+    if (scene.mesh && !scene.mesh->empty()) {
+        Mesh m = *scene.mesh;
+        if (m.normal.size() != m.position.size()) m.compute_normals();
+        std::vector<float> interleaved;
+        interleaved.reserve(m.position.size() * 6);
+        for (size_t i = 0; i < m.position.size(); ++i) {
+            interleaved.insert(interleaved.end(), {m.position[i].x, m.position[i].y, m.position[i].z});
+            interleaved.insert(interleaved.end(), {m.normal[i].x, m.normal[i].y, m.normal[i].z});
+        }
+        glCreateBuffers(1, &mesh_vbo_);
+        glNamedBufferStorage(mesh_vbo_, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(), 0);
+        glCreateBuffers(1, &mesh_ibo_);
+        glNamedBufferStorage(mesh_ibo_, GLsizeiptr(m.index.size() * sizeof(uint32_t)), m.index.data(), 0);
+        glCreateVertexArrays(1, &mesh_vao_);
+        glVertexArrayVertexBuffer(mesh_vao_, 0, mesh_vbo_, 0, 6 * sizeof(float));
+        glVertexArrayElementBuffer(mesh_vao_, mesh_ibo_);
+        for (GLuint loc = 0; loc < 2; ++loc) {
+            glEnableVertexArrayAttrib(mesh_vao_, loc);
+            glVertexArrayAttribFormat(mesh_vao_, loc, 3, GL_FLOAT, GL_FALSE, loc * 3 * sizeof(float));
+            glVertexArrayAttribBinding(mesh_vao_, loc, 0);
+        }
+        mesh_index_count_ = GLsizei(m.index.size());
+    }
+}
+
+void GpuScene::ranges(double t0, double t1, Ranges& out) const {
+    out.first.clear();
+    out.count.clear();
+    out.segments = 0;
+    if (!cpu_) return;
+    const Pathlines& pl = cpu_->lines;
+    bool whole = !(t1 > t0);
+    for (const LineRange& r : pl.lines) {
+        if (r.count < 2) continue;
+        uint32_t a = 0, b = r.count;  // point indices [a, b) within the line
+        if (!whole) {
+            const float* t = pl.time.data() + r.first;
+            // A segment [k, k+1] overlaps the window when t[k+1] >= t0 and t[k] <= t1.
+            uint32_t lo = uint32_t(std::lower_bound(t, t + r.count, float(t0)) - t);  // first t >= t0
+            uint32_t hi = uint32_t(std::upper_bound(t, t + r.count, float(t1)) - t);  // first t > t1
+            a = lo > 0 ? lo - 1 : 0;
+            b = std::min(hi + 1, r.count);
+            if (lo >= r.count || hi == 0 || b <= a + 1) continue;
+        }
+        out.first.push_back(GLint(r.first + a));
+        out.count.push_back(GLsizei(b - a));
+        out.segments += b - a - 1;
+    }
+}
+
+void GpuScene::draw_lines(const Ranges& r) const {
+    if (r.first.empty()) return;
+    glBindVertexArray(line_vao_);
+    glMultiDrawArrays(GL_LINE_STRIP, r.first.data(), r.count.data(), GLsizei(r.first.size()));
+    glBindVertexArray(0);
+}
+
+}  // namespace pathlet

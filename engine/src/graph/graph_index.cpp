@@ -1,0 +1,157 @@
+// Name resolution: pass types, declared + implicit resources, pin bindings, writers.
+#include "graph_internal.hpp"
+
+namespace pathlet::graph_detail {
+
+Ref split_ref(const std::string& text) {
+    static const std::string suffix = "@prev";
+    if (text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0)
+        return {text.substr(0, text.size() - suffix.size()), true};
+    return {text, false};
+}
+
+int GraphIndex::find_resource(const std::string& name) const {
+    auto it = resource_by_name.find(name);
+    return it == resource_by_name.end() ? -1 : it->second;
+}
+
+std::vector<std::string> GraphIndex::resource_names() const {
+    std::vector<std::string> v;
+    for (const auto& r : resources) v.push_back(r.name);
+    return v;
+}
+
+int GraphIndex::resolve(const std::string& ref, std::string& err) const {
+    err.clear();
+    if (int r = find_resource(ref); r >= 0) return r;
+    const size_t dot = ref.find('.');
+    if (dot == std::string::npos) {
+        err = "unknown resource '" + ref + "'" + did_you_mean(ref, resource_names());
+        return -1;
+    }
+    const std::string pass = ref.substr(0, dot), pin = ref.substr(dot + 1);
+    auto it = pass_by_name.find(pass);
+    if (it == pass_by_name.end()) {
+        std::vector<std::string> passes;
+        for (const auto& p : g->passes) passes.push_back(p.name);
+        err = "'" + ref + "' names no resource and no pass '" + pass + "'" + did_you_mean(pass, passes);
+        return -1;
+    }
+    const PassTypeInfo* t = types[it->second];
+    if (!t) return -1;  // unknown type: reported at its "type"
+    const PinDecl* pd = t->pin(pin);
+    if (!pd || pd->dir != PinDir::Output) {
+        std::vector<std::string> outs;
+        for (const auto& p : t->pins)
+            if (p.dir == PinDir::Output) outs.push_back(p.name);
+        err = "pass '" + pass + "' (type '" + t->type + "') has no output pin '" + pin + "'" + did_you_mean(pin, outs) +
+              "; its outputs: " + (outs.empty() ? std::string("none") : join(outs));
+        return -1;
+    }
+    // Bound output: the resource it names (an unknown one was reported at the binding).
+    auto bound = g->passes[it->second].outputs.find(pin);
+    if (bound != g->passes[it->second].outputs.end()) return find_resource(bound->second);
+    return -1;  // unreachable: unbound outputs have implicit resources found above
+}
+
+const PinDecl* GraphIndex::writer_pin(int r) const {
+    return writers[r].empty() ? nullptr : writers[r][0].second->decl;
+}
+
+std::string GraphIndex::resolved_format(int r) const {
+    if (!resources[r].format.empty()) return resources[r].format;
+    const PinDecl* p = writer_pin(r);
+    return p && p->kind == PinKind::Texture && p->format != "any" ? p->format : "";
+}
+
+GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<Diagnostic>& diags) {
+    GraphIndex idx;
+    idx.g = &g;
+    idx.reg = &reg;
+    auto error = [&](const std::string& ptr, const std::string& msg) { diags.push_back({g.path, ptr, msg}); };
+
+    idx.resources = g.resources;
+    for (size_t r = 0; r < g.resources.size(); ++r) idx.resource_by_name[g.resources[r].name] = int(r);
+
+    for (size_t i = 0; i < g.passes.size(); ++i) {
+        const PassDecl& p = g.passes[i];
+        idx.pass_by_name.emplace(p.name, int(i));
+        const PassTypeInfo* t = reg.find(p.type);
+        idx.types.push_back(t);
+        if (!t) {
+            error(p.pointer + "/type", "unknown pass type '" + p.type + "'" + did_you_mean(p.type, reg.names()));
+            continue;
+        }
+        // Unbound outputs get an implicit resource "<pass>.<pin>" shaped by the pin.
+        for (const auto& pin : t->pins) {
+            if (pin.dir != PinDir::Output || p.outputs.count(pin.name)) continue;
+            ResourceDecl r;
+            r.name = p.name + "." + pin.name;
+            r.kind = pin.kind;
+            r.implicit = true;
+            r.pointer = p.pointer;
+            if (idx.resource_by_name.emplace(r.name, int(idx.resources.size())).second) idx.resources.push_back(r);
+        }
+    }
+
+    idx.inputs.resize(g.passes.size());
+    idx.outputs.resize(g.passes.size());
+    for (size_t i = 0; i < g.passes.size(); ++i) {
+        const PassDecl& p = g.passes[i];
+        const PassTypeInfo* t = idx.types[i];
+        if (!t) continue;
+        auto pins_of = [&](PinDir dir) {
+            std::vector<std::string> v;
+            for (const auto& pin : t->pins)
+                if (pin.dir == dir) v.push_back(pin.name);
+            return v;
+        };
+        for (const bool input : {true, false}) {
+            const PinDir dir = input ? PinDir::Input : PinDir::Output;
+            const char* key = input ? "inputs" : "outputs";
+            for (const auto& [pin, ref] : input ? p.inputs : p.outputs) {
+                BoundPin b;
+                b.pin = pin;
+                b.pointer = p.pointer + "/" + key + "/" + pointer_escape(pin);
+                const PinDecl* pd = t->pin(pin);
+                if (!pd || pd->dir != dir) {
+                    std::string msg = "pass type '" + t->type + "' has no " + (input ? "input" : "output") + " pin '" + pin + "'";
+                    if (pd) msg += "; '" + pin + "' is an " + (input ? "output: bind it under \"outputs\"" : "input: bind it under \"inputs\"");
+                    else msg += did_you_mean(pin, pins_of(dir));
+                    auto names = pins_of(dir);
+                    msg += std::string("; its ") + key + ": " + (names.empty() ? std::string("none") : join(names));
+                    error(b.pointer, msg);
+                } else {
+                    b.decl = pd;
+                }
+                std::string err;
+                if (input) {
+                    Ref r = split_ref(ref);
+                    b.prev = r.prev;
+                    b.resource = idx.resolve(r.name, err);
+                } else if ((b.resource = idx.find_resource(ref)) < 0) {
+                    err = "unknown resource '" + ref + "'" + did_you_mean(ref, idx.resource_names()) +
+                          "; declare it under /resources, or leave the pin unbound to get '" + p.name + "." + pin + "'";
+                }
+                if (!err.empty()) error(b.pointer, err);
+                (input ? idx.inputs : idx.outputs)[i].push_back(b);
+            }
+        }
+        for (const auto& pin : t->pins) {
+            if (pin.dir != PinDir::Output || p.outputs.count(pin.name)) continue;
+            int r = idx.find_resource(p.name + "." + pin.name);
+            // A duplicate pass name shares the first pass's implicit names: reported, not bound twice.
+            if (r >= 0 && idx.resources[r].implicit && idx.resources[r].pointer == p.pointer)
+                idx.outputs[i].push_back({pin.name, &pin, r, false, p.pointer});
+        }
+    }
+
+    // Writers, once every vector above has its final size (the BoundPin pointers stay valid).
+    idx.writers.resize(idx.resources.size());
+    for (size_t i = 0; i < g.passes.size(); ++i)
+        for (const auto& b : idx.outputs[i])
+            if (b.resource >= 0 && b.decl) idx.writers[b.resource].push_back({int(i), &b});
+    return idx;
+}
+
+}  // namespace pathlet::graph_detail

@@ -1,0 +1,170 @@
+// Graph files (what the JSON says) and compiled graphs (what runs). Pure data, no GL calls:
+// the compiler works without a context, so `pathlet validate/graph` and the tests need none.
+#pragma once
+
+#include <pathlet/pass.hpp>
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+class PassRegistry;
+
+// One problem in a graph file: "<file>:<json pointer>: <message>".
+struct Diagnostic {
+    std::string file;
+    std::string pointer;  // JSON pointer, e.g. "/passes/2/params/radius"
+    std::string message;
+    int line = 0, column = 0;  // set for JSON syntax errors (there is no pointer then)
+    std::string str() const {
+        if (line > 0) return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message;
+        return file + ":" + (pointer.empty() ? "/" : pointer) + ": " + message;
+    }
+};
+
+// Thrown when a graph has errors; holds every one of them (validation never stops at the first).
+struct GraphError : std::runtime_error {
+    std::vector<Diagnostic> diagnostics;
+    explicit GraphError(std::vector<Diagnostic> d);
+};
+
+// ---- as written -------------------------------------------------------------------------
+
+struct VariableDecl {
+    std::string name;
+    ParamDecl decl;   // type, default, range, doc (same rules as pass parameters)
+    json value;       // default or --set override, already coerced
+    std::string pointer;
+};
+
+struct SizeDecl {
+    std::string relative_to = "output";  // "output" or a resource name; "" when absolute
+    float scale_x = 1.0f, scale_y = 1.0f;
+    int width = 0, height = 0;           // absolute size when relative_to == ""
+};
+
+struct ResourceDecl {
+    std::string name;
+    PinKind kind = PinKind::Texture;
+    std::string format;       // "" = from the writing pin
+    std::optional<SizeDecl> size;  // unset = from the writing pin (scale x output)
+    int mips = -1;            // -1 = from the pin; 0 = full chain
+    size_t bytes = 0, bytes_per_pixel = 0;  // buffers; 0 = from the pin
+    bool history = false;     // keeps last frame's content, readable as "<name>@prev"
+    bool persistent = false;  // never pooled; content survives across frames
+    bool implicit = false;    // made for an unbound output pin ("<pass>.<pin>")
+    std::string pointer;
+};
+
+struct PassDecl {
+    std::string name;
+    std::string type;
+    json params = json::object();                // as written; values may be "$variable"
+    std::map<std::string, std::string> inputs;   // pin -> "resource", "pass.pin" or "resource@prev"
+    std::map<std::string, std::string> outputs;  // pin -> "resource"
+    json enabled = true;                         // bool or "$variable"
+    std::string pointer;
+};
+
+struct OutputDecl {
+    std::string resource;     // "resource" or "pass.pin"
+    std::string capture;      // path pattern, e.g. "out/{graph}/{frame:05}.png"; "" = none
+    std::string pointer;
+};
+
+struct GraphFile {
+    std::string path;
+    int version = 1;
+    std::string name, description;
+    std::vector<VariableDecl> variables;
+    std::vector<ResourceDecl> resources;
+    std::vector<PassDecl> passes;
+    std::vector<OutputDecl> outputs;
+};
+
+// ---- compiled ---------------------------------------------------------------------------
+
+struct CompiledResource {
+    std::string name;
+    PinKind kind = PinKind::Texture;
+    std::string format;        // resolved format name
+    GLenum internal_format = 0;
+    int width = 0, height = 0, mips = 1;
+    size_t bytes = 0;          // buffers: size; textures: memory estimate (all mips)
+    bool history = false, persistent = false, captured = false;
+    bool transient() const { return !history && !persistent && !captured; }
+    int writer = -1;           // index into CompiledGraph::passes
+    int first_use = -1, last_use = -1;  // pass indices in execution order
+    int slot = -1;             // index into CompiledGraph::slots (pooled physical object)
+};
+
+struct Binding {
+    int resource = -1;
+    bool previous = false;     // reads last frame's content of a history resource
+};
+
+struct CompiledPass {
+    std::string name;
+    const PassTypeInfo* type = nullptr;
+    json params;                                 // resolved: defaults + graph + variables + --set
+    std::map<std::string, Binding> bindings;     // pin -> resource
+    std::string pointer;
+};
+
+// A physical GL object shared by resources whose lifetimes do not overlap.
+struct PoolSlot {
+    PinKind kind = PinKind::Texture;
+    GLenum internal_format = 0;
+    int width = 0, height = 0, mips = 1;
+    size_t bytes = 0;
+    std::vector<int> resources;
+};
+
+struct CulledPass {
+    std::string name, reason;
+};
+
+struct CompiledGraph {
+    std::string file, name;
+    glm::ivec2 output_size{0};
+    std::vector<CompiledPass> passes;        // execution order (enabled, not culled)
+    std::vector<CompiledResource> resources;
+    std::vector<PoolSlot> slots;
+    std::vector<CulledPass> culled;          // with the reason, for the log and --plan
+    std::vector<OutputDecl> outputs;         // resource resolved to a name in `resources`
+    size_t memory_unpooled = 0, memory_pooled = 0;
+    json variables = json::object();         // resolved values, for reports
+
+    int find_resource(const std::string& name) const;
+};
+
+// ---- the steps ------------------------------------------------------------------------
+
+// Parses a graph file (comments allowed). Syntax and structure errors -> GraphError.
+GraphFile parse_graph_file(const std::string& path);
+GraphFile parse_graph_json(const std::string& text, const std::string& path_for_messages);
+
+// Applies "--set name=value" / "--set pass.param=value" overrides; problems go to `diags`.
+void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
+                     std::vector<Diagnostic>& diags);
+
+// Every error at once: unknown pass type/param (did-you-mean), type/range errors, unconnected
+// required inputs, kind/format mismatches, cycles, unknown resources, two writers of one resource.
+std::vector<Diagnostic> validate_graph(const GraphFile& g, const PassRegistry& reg);
+
+// Validates, culls (with reasons), orders topologically, resolves formats and sizes for the
+// output size, computes lifetimes and pools transients. Throws GraphError.
+CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::ivec2 output_size);
+
+std::string graph_to_dot(const CompiledGraph& cg, const GraphFile& g);
+std::string plan_to_text(const CompiledGraph& cg);   // order, lifetimes, memory before/after pooling
+json plan_to_json(const CompiledGraph& cg);
+
+// "did you mean": the closest candidate within a small edit distance, or "".
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace pathlet

@@ -1,0 +1,87 @@
+// apply_overrides: "--set name=value" (graph variable) and "--set pass.param=value" (one pass's
+// parameter, read by the parameter's declared type). "--set pass.enabled=false" toggles a pass
+// whose type has no parameter of that name.
+#include "graph_internal.hpp"
+
+#include <algorithm>
+
+namespace pathlet {
+
+using namespace graph_detail;
+
+namespace {
+
+bool parse_bool(const std::string& s, bool& out) {
+    if (s == "true" || s == "1" || s == "on" || s == "yes") return out = true, true;
+    if (s == "false" || s == "0" || s == "off" || s == "no") return out = false, true;
+    return false;
+}
+
+}  // namespace
+
+void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
+                     std::vector<Diagnostic>& diags) {
+    for (const auto& set : sets) {
+        auto error = [&](const std::string& ptr, const std::string& msg) {
+            diags.push_back({g.path, ptr, "--set " + set + ": " + msg});
+        };
+        const size_t eq = set.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            error("", "expected name=value (a variable) or pass.param=value");
+            continue;
+        }
+        const std::string lhs = set.substr(0, eq), text = set.substr(eq + 1);
+        const size_t dot = lhs.find('.');
+
+        if (dot == std::string::npos) {
+            auto it = std::find_if(g.variables.begin(), g.variables.end(), [&](const auto& v) { return v.name == lhs; });
+            if (it == g.variables.end()) {
+                error("/variables", "unknown variable '" + lhs + "'" + did_you_mean(lhs, variable_names(g)) +
+                                        (g.variables.empty() ? "; the graph declares no variables"
+                                                             : "; its variables: " + join(variable_names(g))) +
+                                        "; use pass.param=value for a pass parameter");
+                continue;
+            }
+            json out;
+            if (std::string err = it->decl.coerce_text(text, out); !err.empty()) error(it->pointer, "variable '" + lhs + "' " + err);
+            else it->value = out;
+            continue;
+        }
+
+        const std::string pass = lhs.substr(0, dot), param = lhs.substr(dot + 1);
+        auto p = std::find_if(g.passes.begin(), g.passes.end(), [&](const auto& x) { return x.name == pass; });
+        if (p == g.passes.end()) {
+            std::vector<std::string> names;
+            for (const auto& x : g.passes) names.push_back(x.name);
+            error("/passes", "unknown pass '" + pass + "'" + did_you_mean(pass, names));
+            continue;
+        }
+        const PassTypeInfo* t = reg.find(p->type);
+        if (!t) {
+            error(p->pointer + "/type", "pass '" + pass + "' has unknown type '" + p->type + "'");
+            continue;
+        }
+        const ParamDecl* d = t->param(param);
+        if (!d && param == "enabled") {
+            bool on = true;
+            if (parse_bool(text, on)) p->enabled = on;
+            else error(p->pointer + "/enabled", "enabled must be true or false, got '" + text + "'");
+            continue;
+        }
+        if (!d) {
+            std::vector<std::string> names;
+            for (const auto& x : t->params) names.push_back(x.name);
+            error(p->pointer + "/params", "unknown parameter '" + param + "' for pass type '" + t->type + "'" +
+                                              did_you_mean(param, names) +
+                                              "; its parameters: " + (names.empty() ? std::string("none") : join(names)));
+            continue;
+        }
+        json out;
+        if (std::string err = d->coerce_text(text, out); !err.empty())
+            error(p->pointer + "/params/" + pointer_escape(param), "parameter '" + param + "' " + err);
+        else
+            p->params[param] = out;
+    }
+}
+
+}  // namespace pathlet

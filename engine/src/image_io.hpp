@@ -1,0 +1,48 @@
+// Images on the CPU side: reading/writing files through OpenImageIO (never half-written:
+// temp name + rename), reading GL textures back, and capture path patterns.
+#pragma once
+
+#include <pathlet/gl.hpp>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+struct Image {
+    int width = 0, height = 0, channels = 4;
+    bool is_float = false;      // source precision: float/half data, not 8-bit
+    std::vector<float> pixels;  // interleaved channels, top row first
+
+    float& at(int x, int y, int c) { return pixels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)]; }
+    float at(int x, int y, int c) const { return pixels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)]; }
+};
+
+// The one float -> 8-bit rule (clamp to [0,1], round to nearest), shared by PNG output,
+// video frames and golden comparisons.
+uint8_t to_unorm8(float v);
+// Interleaved RGBA8, top row first; grey is replicated, missing alpha is opaque.
+std::vector<uint8_t> to_rgba8(const Image& img);
+
+// Pixel values go to and come from files unchanged (no alpha premultiplication either way).
+// Format from the extension (PNG when there is none). EXR (and float TIFF) keep 32-bit
+// float; 8-bit formats get clamped and rounded values. Atomic: a temp name that keeps the
+// extension, then rename. Throws std::runtime_error naming the file.
+void write_image(const std::string& path, const Image& img);
+Image read_image(const std::string& path);  // throws std::runtime_error naming the file
+
+// Reads mip level `mip` of a 2D texture as float with glGetTextureImage; w, h are that
+// level's size (checked). GL's bottom-up rows are flipped to top row first.
+Image read_texture(GLuint tex, int w, int h, int mip = 0, int channels = 4);
+
+// "out/{graph}/{frame:05}.png" -> "out/lineao/00012.png". {name} comes from vars, {frame}
+// and {frame:0N} from `frame`, "{{" and "}}" are literal braces. Throws
+// std::invalid_argument on an unknown name or a malformed pattern.
+std::string expand_pattern(const std::string& pattern, const std::map<std::string, std::string>& vars,
+                           uint64_t frame);
+// Creates the directory that will hold `path` (nothing when it has none).
+void ensure_parent_dir(const std::string& path);
+
+}  // namespace pathlet

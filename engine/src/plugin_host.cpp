@@ -1,0 +1,142 @@
+#include "plugin_host.hpp"
+
+#include <pathlet/plugin.hpp>
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace pathlet {
+
+std::string engine_library_dir() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&engine_library_dir), &info) && info.dli_fname)
+        return fs::absolute(fs::path(info.dli_fname)).parent_path().string();
+    return ".";
+}
+
+std::string engine_share_dir() {
+    if (const char* e = std::getenv("PATHLET_SHARE_DIR")) return e;
+    fs::path beside = fs::path(engine_library_dir()).parent_path() / "share" / "pathlet";
+    if (fs::exists(beside / "shaders")) return beside.string();
+    fs::path installed = PATHLET_INSTALL_SHARE_DIR;
+    if (fs::exists(installed / "shaders")) return installed.string();
+    return PATHLET_SOURCE_DIR;  // running from an unusual place inside the build tree
+}
+
+std::vector<std::string> PluginHost::search_path(const std::vector<std::string>& extra_dirs) {
+    std::vector<std::string> dirs = extra_dirs;
+    if (const char* env = std::getenv("PATHLET_PLUGIN_PATH")) {
+        std::stringstream s(env);
+        std::string d;
+        while (std::getline(s, d, ':'))
+            if (!d.empty()) dirs.push_back(d);
+    }
+    dirs.push_back((fs::path(engine_library_dir()) / "pathlet" / "passes").string());
+    // Remove duplicates, keep order.
+    std::vector<std::string> out;
+    std::set<std::string> seen;
+    for (const auto& d : dirs) {
+        std::error_code ec;
+        std::string key = fs::weakly_canonical(d, ec).string();
+        if (key.empty()) key = d;
+        if (seen.insert(key).second) out.push_back(key);  // canonical: messages show clean paths
+    }
+    return out;
+}
+
+namespace {
+// Collects types first so a plugin that fails half-way registers nothing.
+struct CollectingSink : PassSink {
+    std::vector<PassTypeInfo> types;
+    void add(PassTypeInfo info) override { types.push_back(std::move(info)); }
+};
+}  // namespace
+
+void PluginHost::load_file(const std::string& path) {
+    if (!fs::exists(path)) throw PluginError(path + ": file not found");
+    // RTLD_NOW: an unresolved symbol fails here, cleanly, instead of killing the process at
+    // its first call. RTLD_LOCAL: plugins cannot clash with each other's symbols.
+    void* h = dlopen(fs::absolute(path).c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        const char* e = dlerror();
+        throw PluginError(path + ": cannot load: " + (e ? e : "unknown dlopen error"));
+    }
+    using Entry = const PluginDescriptor* (*)();
+    auto entry = reinterpret_cast<Entry>(dlsym(h, PATHLET_PLUGIN_ENTRY));
+    if (!entry)
+        throw PluginError(path + ": not a Pathlet plugin (no " PATHLET_PLUGIN_ENTRY
+                                 " entry point; build it with pathlet_add_pass() and PATHLET_PLUGIN())");
+    const PluginDescriptor* d = nullptr;
+    try {
+        d = entry();
+    } catch (...) {
+        throw PluginError(path + ": its entry point threw an exception");
+    }
+    if (!d) throw PluginError(path + ": entry point returned no descriptor");
+    if (d->abi_version != PATHLET_PLUGIN_ABI_VERSION)
+        throw PluginError(path + ": plugin ABI version " + std::to_string(d->abi_version) +
+                          " does not match the engine's ABI version " + std::to_string(PATHLET_PLUGIN_ABI_VERSION) +
+                          "; rebuild the plugin against this Pathlet SDK");
+    if (d->struct_size != sizeof(PluginDescriptor))
+        throw PluginError(path + ": plugin descriptor size mismatch; rebuild the plugin against this Pathlet SDK");
+    if (!d->fingerprint || std::strcmp(d->fingerprint, PATHLET_BUILD_FINGERPRINT_STR) != 0)
+        throw PluginError(path + ": built with a different compiler/standard library (" +
+                          (d->fingerprint ? d->fingerprint : "none") + ", engine: " PATHLET_BUILD_FINGERPRINT_STR
+                          "); rebuild the plugin with the engine's toolchain");
+    if (!d->register_passes) throw PluginError(path + ": descriptor has no register function");
+    CollectingSink sink;
+    try {
+        d->register_passes(&sink);
+    } catch (const std::exception& e) {
+        throw PluginError(path + ": registering its pass types threw: " + e.what());
+    } catch (...) {
+        throw PluginError(path + ": registering its pass types threw a non-standard exception");
+    }
+    if (sink.types.empty()) throw PluginError(path + ": plugin registered no pass types");
+    // Check all names before adding any, so a duplicate leaves the registry unchanged.
+    std::set<std::string> names;
+    for (auto& t : sink.types) {
+        if (!t.create) throw PluginError(path + ": pass type '" + t.type + "' has no factory");
+        if (!names.insert(t.type).second)
+            throw PluginError(path + ": registers pass type '" + t.type + "' twice");
+        if (const PassTypeInfo* prev = registry_.find(t.type))
+            throw PluginError(path + ": pass type '" + t.type + "' is already registered by " + prev->plugin_file +
+                              "; rename one of them or remove one plugin from the search path");
+    }
+    Loaded l{path, d->name ? d->name : "", {}};
+    for (auto& t : sink.types) {
+        t.plugin_file = path;
+        l.types.push_back(t.type);
+        registry_.add(std::move(t));
+    }
+    loaded_.push_back(std::move(l));
+    // The handle is never closed: pass objects and their vtables live in the plugin.
+}
+
+void PluginHost::load_dirs(const std::vector<std::string>& dirs) {
+    for (const auto& dir : dirs) {
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec)) continue;
+        std::vector<fs::path> files;
+        for (const auto& e : fs::directory_iterator(dir, ec))
+            if (e.path().extension() == ".so") files.push_back(e.path());
+        std::sort(files.begin(), files.end());
+        for (const auto& f : files) {
+            try {
+                load_file(f.string());
+            } catch (const PluginError& e) {
+                problems_.push_back(e.what());
+            }
+        }
+    }
+}
+
+}  // namespace pathlet

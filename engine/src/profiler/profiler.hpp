@@ -1,0 +1,150 @@
+// Per-pass frame profiler. Two ways to time GPU work (ecosystem notes §3):
+//  * GlTimestamp: glQueryCounter(GL_TIMESTAMP) at every boundary, a ring of in-flight frames,
+//    results read only once available (never stalls). Right for real GPUs.
+//  * CpuFinish: glFinish() then the steady clock at every boundary. Serialises the pipeline,
+//    but it is the only honest number on llvmpipe, whose timer queries miss rasterisation.
+// CPU-side (command recording) time per pass is recorded either way, without any finish.
+#pragma once
+
+#include <pathlet/gl.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+enum class TimingBackend { Auto, GlTimestamp, CpuFinish };
+
+// "auto" | "gpu" | "finish"; throws std::invalid_argument naming the accepted words.
+TimingBackend parse_timing_backend(const std::string& text);
+const char* to_string(TimingBackend b);  // "auto" | "gpu" | "finish"
+
+// True for renderers whose timer queries cannot be trusted (llvmpipe, softpipe, SwiftShader).
+bool is_software_renderer(const std::string& gl_renderer);
+
+class Profiler {
+public:
+    struct Stats {
+        double median = 0, p5 = 0, p95 = 0, mean = 0, min = 0, max = 0;
+        size_t n = 0;
+    };
+    struct PassResult {
+        std::string name;
+        Stats gpu_ms;  // backend-measured (timestamps or finish-bracketed)
+        Stats cpu_ms;  // recording cost on the CPU, no finish
+        std::map<std::string, double> stats;  // add_stat values, mean over measured frames
+    };
+
+    // Auto picks CpuFinish for software renderers, else GlTimestamp. GlTimestamp needs a
+    // current context; without timestamp support it falls back to CpuFinish and says so.
+    void init(TimingBackend requested, const std::string& gl_renderer);
+    TimingBackend backend() const { return backend_; }
+    std::string backend_description() const { return description_; }
+
+    void set_warmup_frames(int n) { warmup_frames_ = n < 0 ? 0 : n; }  // default 3
+    // Replaces the steady clock (milliseconds, any epoch); for deterministic tests.
+    void set_clock(std::function<double()> now_ms) { clock_ = std::move(now_ms); }
+
+    void begin_frame(uint64_t index);
+    void end_frame();
+    void begin_pass(const std::string& name);  // passes may nest; each is timed on its own
+    void end_pass();
+    // A per-pass figure such as segments drawn. Ignored during warm-up frames.
+    void add_stat(const std::string& pass, const std::string& name, double value);
+
+    // Collects GPU results of frames still in flight, waiting for them (GlTimestamp only).
+    void flush();
+    // flush() and delete the query objects; the context must still be current.
+    void release_gl();
+
+    // Reports. Call flush() first when using GlTimestamp, or the last frames are missing.
+    std::vector<PassResult> passes() const;  // first-seen order
+    Stats frame_ms() const;                  // whole frame, backend-measured
+    Stats frame_cpu_ms() const;              // whole frame, CPU wall clock
+    size_t frames_recorded() const { return frames_.size(); }
+    size_t gpu_frames_dropped() const { return dropped_; }  // > 64 frames behind, or implausible values
+
+    std::string table(const std::string& title) const;
+    std::string csv() const;
+    nlohmann::json to_json(const nlohmann::json& meta) const;
+    nlohmann::json chrome_trace() const;  // Trace Event Format, opens in Perfetto
+
+    // Timestamps are milliseconds since init() on the profiler's (CPU) clock.
+    struct Interval {
+        double begin = 0, end = 0;
+        bool valid = false;
+        double duration() const { return end - begin; }
+    };
+    struct PassSample {
+        int pass = 0;  // index into pass_names_
+        int depth = 0;
+        Interval cpu, gpu;
+    };
+    struct FrameRecord {
+        uint64_t index = 0;
+        bool warmup = false;
+        Interval cpu, gpu;
+        std::vector<PassSample> passes;
+    };
+
+private:
+    // Query objects of one frame in flight: [frame begin, pass0 begin, pass0 end, ..., frame end].
+    struct InFlight {
+        std::vector<GLuint> queries;
+        size_t used = 0;
+        size_t frame = 0;                                // index into frames_
+        size_t frame_begin = 0, frame_end = 0;           // query positions
+        std::vector<std::array<size_t, 2>> pass_stamps;  // per pass sample: begin, end
+    };
+    // Collected query sets are recycled, so a GPU keeping up cycles through 3-4 of them.
+    // Headless there is no swap to throttle the CPU: when the GPU lags the ring grows rather
+    // than stall (or drop, as a fixed ring of 4 did on llvmpipe), up to kMaxInFlight frames.
+    static constexpr size_t kMaxInFlight = 64;
+
+    double now() const;
+    int pass_id(const std::string& name);
+    void sync_point();                 // glFinish for CpuFinish
+    size_t stamp();                    // glQueryCounter for GlTimestamp; returns query position
+    bool try_collect(InFlight& slot, bool wait);  // true when collected
+    InFlight& current() { return in_flight_.back(); }
+    void collect_ready();
+    bool measured(const FrameRecord& f) const { return !f.warmup; }
+
+    TimingBackend backend_ = TimingBackend::CpuFinish;
+    std::string description_ = "not initialised";
+    int warmup_frames_ = 3;
+    std::function<double()> clock_;
+    double epoch_ms_ = 0;
+    double gl_to_cpu_ms_ = 0;  // added to GL timestamps (ms) to land on the profiler clock
+
+    std::vector<std::string> pass_names_;
+    std::vector<int> pass_depth_;  // nesting depth where first seen, for indenting reports
+    std::map<std::string, int> pass_ids_;
+    std::vector<FrameRecord> frames_;
+    std::vector<size_t> open_passes_;  // indices into the current frame's passes
+    bool in_frame_ = false;
+    uint64_t frames_begun_ = 0;
+
+    std::deque<InFlight> in_flight_;               // oldest first
+    std::vector<std::vector<GLuint>> spare_sets_;  // query objects of collected frames, for reuse
+    size_t dropped_ = 0;
+
+    struct StatAccum {
+        double sum = 0;
+        size_t n = 0;
+    };
+    std::map<int, std::map<std::string, StatAccum>> stats_;
+};
+
+// Percentiles by linear interpolation between the sorted samples (NumPy's default).
+Profiler::Stats compute_stats(std::vector<double> samples);
+double percentile_sorted(const std::vector<double>& sorted, double p);  // p in [0,1]
+
+}  // namespace pathlet

@@ -1,0 +1,28 @@
+// What every command needs: the pass registry filled from the plugin search path, and
+// (for commands that draw) a headless GL context.
+#pragma once
+
+#include "gl_context.hpp"
+#include "pass_registry.hpp"
+#include "plugin_host.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+struct Runtime {
+    PassRegistry registry;
+    PluginHost host{registry};
+    std::unique_ptr<GlContext> gl;
+
+    // Loads every plugin on the search path; problems are kept in host.problems().
+    void load_plugins(const std::vector<std::string>& extra_dirs);
+    // Creates the GL context (once) and prints its renderer line unless quiet.
+    GlContext& ensure_gl(bool quiet);
+    // Text listing plugin problems, to append to "unknown pass type" errors.
+    std::string plugin_problems_note() const;
+};
+
+}  // namespace pathlet

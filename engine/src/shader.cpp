@@ -1,0 +1,191 @@
+#include <pathlet/shader.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace pathlet {
+
+std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs) {
+    if (fs::path(name).is_absolute() && fs::exists(name)) return name;
+    for (const auto& d : dirs) {
+        fs::path p = fs::path(d) / name;
+        if (fs::exists(p)) return p.string();
+    }
+    std::string msg = "shader file '" + name + "' not found; searched:";
+    for (const auto& d : dirs) msg += "\n  " + d;
+    throw ShaderError(msg);
+}
+
+namespace {
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ShaderError(path + ": cannot read");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Inlines #include "x" recursively. Each file gets a source-string number for #line, so the
+// compiler's messages can be mapped back to the file names in `files`.
+std::string expand(const std::string& path, const std::vector<std::string>& dirs, std::vector<std::string>& files,
+                   int depth, bool is_root, const std::vector<std::string>& defines) {
+    if (depth > 16) throw ShaderError(path + ": #include nested too deeply (a cycle?)");
+    int id = int(files.size());
+    files.push_back(path);
+    std::istringstream in(read_text(path));
+    std::ostringstream out;
+    std::string line;
+    int n = 0;
+    static const std::regex include_re(R"(^\s*#\s*include\s+[<"]([^">]+)[">]\s*$)");
+    static const std::regex version_re(R"(^\s*#\s*version\b.*$)");
+    bool saw_version = false;
+    while (std::getline(in, line)) {
+        ++n;
+        std::smatch m;
+        if (std::regex_match(line, m, include_re)) {
+            std::vector<std::string> search = {fs::path(path).parent_path().string()};
+            search.insert(search.end(), dirs.begin(), dirs.end());
+            std::string inc;
+            try {
+                inc = find_shader_file(m[1].str(), search);
+            } catch (const ShaderError& e) {
+                throw ShaderError(path + ":" + std::to_string(n) + ": " + e.what());
+            }
+            out << "#line 1 " << files.size() << "\n";
+            out << expand(inc, dirs, files, depth + 1, false, defines);
+            out << "#line " << (n + 1) << " " << id << "\n";
+        } else if (is_root && !saw_version && std::regex_match(line, version_re)) {
+            saw_version = true;
+            out << line << "\n";
+            for (const auto& d : defines) out << "#define " << d << "\n";
+            out << "#line " << (n + 1) << " " << id << "\n";
+        } else {
+            out << line << "\n";
+        }
+    }
+    return out.str();
+}
+
+// Rewrites "0:12(3): error: ..." (Mesa) and "0(12) : error ..." (NVIDIA) into "file:12: error: ...".
+std::string map_log(const std::string& log, const std::vector<std::string>& files) {
+    static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
+    static const std::regex nv(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+    std::istringstream in(log);
+    std::ostringstream out;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        auto file_of = [&](const std::string& idx) {
+            size_t i = std::stoul(idx);
+            return i < files.size() ? files[i] : "<source " + idx + ">";
+        };
+        if (std::regex_match(line, m, mesa))
+            out << file_of(m[1]) << ":" << m[2] << ":" << m[3] << ": " << m[4] << "\n";
+        else if (std::regex_match(line, m, nv))
+            out << file_of(m[1]) << ":" << m[2] << ": " << m[3] << "\n";
+        else if (!line.empty())
+            out << line << "\n";
+    }
+    return out.str();
+}
+
+GLenum stage_of(const std::string& file) {
+    std::string ext = fs::path(file).extension().string();
+    if (ext == ".vert") return GL_VERTEX_SHADER;
+    if (ext == ".geom") return GL_GEOMETRY_SHADER;
+    if (ext == ".frag") return GL_FRAGMENT_SHADER;
+    if (ext == ".comp") return GL_COMPUTE_SHADER;
+    if (ext == ".tesc") return GL_TESS_CONTROL_SHADER;
+    if (ext == ".tese") return GL_TESS_EVALUATION_SHADER;
+    throw ShaderError(file + ": unknown shader stage (use .vert .geom .frag .comp)");
+}
+
+}  // namespace
+
+ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, const std::vector<std::string>& dirs,
+                                        const std::vector<std::string>& defines) {
+    ShaderProgram prog;
+    prog.id_ = glCreateProgram();
+    std::vector<GLuint> shaders;
+    auto cleanup = [&] {
+        for (GLuint s : shaders) glDeleteShader(s);
+    };
+    for (const auto& name : names) {
+        std::string path = find_shader_file(name, dirs);
+        std::vector<std::string> files;
+        std::string src = expand(path, dirs, files, 0, true, defines);
+        GLuint sh = glCreateShader(stage_of(path));
+        shaders.push_back(sh);
+        const char* p = src.c_str();
+        glShaderSource(sh, 1, &p, nullptr);
+        glCompileShader(sh);
+        GLint ok = 0;
+        glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            GLint len = 0;
+            glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
+            std::string log(size_t(std::max(len, 1)), '\0');
+            glGetShaderInfoLog(sh, len, nullptr, log.data());
+            cleanup();
+            throw ShaderError("GLSL compile error in " + path + ":\n" + map_log(log.c_str(), files));
+        }
+        glAttachShader(prog.id_, sh);
+    }
+    glLinkProgram(prog.id_);
+    cleanup();
+    GLint ok = 0;
+    glGetProgramiv(prog.id_, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(prog.id_, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        glGetProgramInfoLog(prog.id_, len, nullptr, log.data());
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        throw ShaderError("GLSL link error in program (" + list + "):\n" + log.c_str());
+    }
+    return prog;
+}
+
+ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept : id_(o.id_), locs_(std::move(o.locs_)) { o.id_ = 0; }
+ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
+    if (this != &o) {
+        if (id_) glDeleteProgram(id_);
+        id_ = o.id_;
+        locs_ = std::move(o.locs_);
+        o.id_ = 0;
+    }
+    return *this;
+}
+ShaderProgram::~ShaderProgram() {
+    if (id_) glDeleteProgram(id_);
+}
+
+GLint ShaderProgram::loc(const std::string& uniform) const {
+    auto it = locs_.find(uniform);
+    if (it != locs_.end()) return it->second;
+    GLint l = glGetUniformLocation(id_, uniform.c_str());
+    locs_[uniform] = l;
+    return l;
+}
+
+void ShaderProgram::set(const std::string& n, int v) const { glProgramUniform1i(id_, loc(n), v); }
+void ShaderProgram::set(const std::string& n, float v) const { glProgramUniform1f(id_, loc(n), v); }
+void ShaderProgram::set(const std::string& n, glm::vec2 v) const { glProgramUniform2f(id_, loc(n), v.x, v.y); }
+void ShaderProgram::set(const std::string& n, glm::vec3 v) const { glProgramUniform3f(id_, loc(n), v.x, v.y, v.z); }
+void ShaderProgram::set(const std::string& n, glm::vec4 v) const {
+    glProgramUniform4f(id_, loc(n), v.x, v.y, v.z, v.w);
+}
+void ShaderProgram::set(const std::string& n, glm::ivec2 v) const { glProgramUniform2i(id_, loc(n), v.x, v.y); }
+void ShaderProgram::set(const std::string& n, const glm::mat4& v) const {
+    glProgramUniformMatrix4fv(id_, loc(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+}  // namespace pathlet

@@ -1,0 +1,45 @@
+#version 450 core
+// Depth- and normal-aware (cross-bilateral) smoothing of the AO term, multiplied into the
+// colour. Background pixels (colour alpha 0) are copied unchanged. Uniform loop bounds:
+// on llvmpipe they skip the fetches of background pixels instead of running them masked.
+#include "lineao_common.glsl"
+
+layout(location = 0) out vec4 o_color;
+layout(binding = 0) uniform sampler2D u_ao;
+layout(binding = 1) uniform sampler2D u_nd;
+layout(binding = 2) uniform sampler2D u_color;
+uniform int u_radius;
+uniform float u_inv2_sigma_s2;  // 1 / (2 sigma_spatial^2)
+uniform float u_inv_sigma_d;    // 1 / sigma_depth
+uniform float u_normal_power;
+uniform bool u_enabled;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 c = texelFetch(u_color, p, 0);
+    if (c.a == 0.0) {  // background: exactly the colour pass's pixel
+        o_color = c;
+        return;
+    }
+    vec4 nd = texelFetch(u_nd, p, 0);
+    float ao = texelFetch(u_ao, p, 0).r;
+    if (u_enabled && nd_is_geometry(nd)) {
+        vec3 n = normalize(nd.xyz);
+        ivec2 size = textureSize(u_ao, 0);
+        float sum = 0.0, wsum = 0.0;
+        for (int j = -u_radius; j <= u_radius; ++j)
+            for (int i = -u_radius; i <= u_radius; ++i) {
+                ivec2 q = p + ivec2(i, j);
+                if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+                vec4 o = texelFetch(u_nd, q, 0);
+                if (!nd_is_geometry(o)) continue;  // background AO (= 1) must not brighten edges
+                float dz = (o.w - nd.w) * u_inv_sigma_d;
+                float w = exp(-float(i * i + j * j) * u_inv2_sigma_s2 - dz * dz);
+                if (u_normal_power > 0.0) w *= pow(max(dot(n, normalize(o.xyz)), 0.0), u_normal_power);
+                sum += w * texelFetch(u_ao, q, 0).r;
+                wsum += w;
+            }
+        if (wsum > 1e-6) ao = sum / wsum;  // the centre always has weight 1 unless its normal is 0
+    }
+    o_color = vec4(c.rgb * ao, c.a);
+}

@@ -1,0 +1,48 @@
+// fullscreen: runs a fragment shader named by a parameter over the whole output, with up to
+// four optional input textures. A quick way to try an image-space idea without C++.
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+#include <string>
+
+namespace {
+
+class Fullscreen : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &ctx.program({"fullscreen.vert", ctx.params().s("shader")});
+    }
+    void execute(pathlet::PassContext& ctx) override {
+        ctx.bind_framebuffer({"color"});
+        prog_->use();
+        for (int i = 0; i < 4; ++i) {
+            std::string pin = "input" + std::to_string(i);
+            if (ctx.connected(pin)) glBindTextureUnit(GLuint(i), ctx.texture(pin).id);
+        }
+        prog_->set("u_time", float(ctx.time()));
+        prog_->set("u_frame", int(ctx.frame_index()));
+        prog_->set("u_size", ctx.output_size());
+        prog_->set("u_param", glm::vec4(ctx.params().v3("param"), ctx.params().f("strength")));
+        glDisable(GL_DEPTH_TEST);
+        ctx.draw_fullscreen();
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+};
+
+pathlet::PassTypeInfo fullscreen_type() {
+    auto b = pathlet::PassTypeBuilder(
+        "fullscreen",
+        "runs a fragment shader file over the output; inputs on units 0-3, uniforms u_time u_frame u_size u_param");
+    b.param_string("shader", "gradient.frag", "fragment shader file, looked up on the shader path")
+        .param_vec3("param", {1, 1, 1}, "free vector handed to the shader as u_param.xyz")
+        .param_float("strength", 1.0, -100.0, 100.0, "free scalar handed to the shader as u_param.w");
+    for (int i = 0; i < 4; ++i)
+        b.input_texture("input" + std::to_string(i), "any", "optional input on texture unit " + std::to_string(i), true);
+    return b.output_texture("color", "rgba8", "the shader's output").make<Fullscreen>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("fullscreen", { sink->add(fullscreen_type()); })

@@ -1,0 +1,67 @@
+// gauss_pyramid: normal/depth pyramid for LineAO's per-level sampling (seed eq. 6: level l
+// samples the l-th level). Level 0 copies the input; every further level is a 2x downsample
+// with a binomial (Gaussian) kernel that ignores background, or OpenWalnut's box mips.
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+#include <algorithm>
+
+namespace {
+
+class GaussPyramid : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &ctx.program({"fullscreen.vert", "gauss_pyramid.frag"});
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const auto& p = ctx.params();
+        pathlet::Texture pyr = ctx.texture("pyramid");
+        const int levels = std::clamp(p.i("levels"), 1, pyr.mips);
+        const int mode = p.s("mode") == "box" ? 2 : 1;
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        prog_->use();
+
+        ctx.bind_framebuffer({"pyramid"}, "", 0);
+        glBindTextureUnit(0, ctx.texture("normal_depth").id);
+        prog_->set("u_mode", 0);
+        ctx.draw_fullscreen();
+
+        glBindTextureUnit(0, pyr.id);
+        prog_->set("u_mode", mode);
+        for (int level = 1; level < levels; ++level) {
+            // Only level-1 is visible to the sampler while level is the render target.
+            glTextureParameteri(pyr.id, GL_TEXTURE_BASE_LEVEL, level - 1);
+            glTextureParameteri(pyr.id, GL_TEXTURE_MAX_LEVEL, level - 1);
+            ctx.bind_framebuffer({"pyramid"}, "", level);
+            ctx.draw_fullscreen();
+        }
+        glTextureParameteri(pyr.id, GL_TEXTURE_BASE_LEVEL, 0);
+        glTextureParameteri(pyr.id, GL_TEXTURE_MAX_LEVEL, pyr.mips - 1);
+        glBindTextureUnit(0, 0);
+        ctx.stat("levels built", levels);
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+};
+
+pathlet::PassTypeInfo gauss_pyramid_type() {
+    return pathlet::PassTypeBuilder(
+               "gauss_pyramid",
+               "normal/depth pyramid for LineAO: level 0 = input, each next level a background-aware "
+               "binomial (Gaussian) 2x downsample, or plain box mips")
+        .param_enum("mode", "gaussian", {"gaussian", "box"},
+                    "gaussian: [1 3 3 1]^2 binomial downsample that skips background texels and renormalises "
+                    "normals; box: plain 2x2 average like glGenerateMipmap (OpenWalnut), background included")
+        .param_int("levels", 4, 1, 16,
+                   "levels written, level 0 included (the rest stay untouched); keep >= lineao's radii")
+        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz) and normalised linear depth (w)")
+        .output_texture("pyramid", "rgba16f", "the pyramid; mip l = level l", 0 /* full chain */)
+        .make<GaussPyramid>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("gauss_pyramid", { sink->add(gauss_pyramid_type()); })

@@ -1,0 +1,50 @@
+#version 450 core
+// One level of the normal/depth pyramid. u_src is bound so that lod 0 is the previous
+// level (the pass narrows the pyramid's BASE/MAX_LEVEL to it, so the level being written is
+// never a sampled level: no feedback loop).
+#include "lineao_common.glsl"
+
+layout(location = 0) out vec4 o_nd;
+layout(binding = 0) uniform sampler2D u_src;
+uniform int u_mode;  // 0 copy (level 0), 1 Gaussian, 2 box
+
+// [1 3 3 1]/8 is the binomial kernel centred between two fine texels, i.e. on the coarse
+// texel's centre; its 4x4 outer product is the 2D Gaussian-like downsample.
+const float W4[4] = float[4](1.0, 3.0, 3.0, 1.0);
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    if (u_mode == 0) {
+        o_nd = texelFetch(u_src, p, 0);
+        return;
+    }
+    ivec2 fine = textureSize(u_src, 0);
+    ivec2 base = 2 * p;
+    if (u_mode == 2) {
+        // glGenerateMipmap's box filter, background included (OpenWalnut's "pyramid").
+        vec4 s = vec4(0.0);
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) s += texelFetch(u_src, min(base + ivec2(i, j), fine - 1), 0);
+        o_nd = 0.25 * s;
+        return;
+    }
+    vec4 sum = vec4(0.0);
+    float wsum = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            vec4 nd = texelFetch(u_src, clamp(base + ivec2(i - 1, j - 1), ivec2(0), fine - 1), 0);
+            // Background texels are left out and the weights renormalised, so lines do not
+            // bleed into the background and their depth is not pulled towards w = 1.
+            float w = nd_is_geometry(nd) ? W4[i] * W4[j] : 0.0;
+            sum += w * nd;
+            wsum += w;
+        }
+    if (wsum <= 0.0) {
+        o_nd = ND_BACKGROUND;
+        return;
+    }
+    sum /= wsum;
+    // Opposite normals (two sides of a thin tube) may cancel: fall back to facing the viewer.
+    float len = length(sum.xyz);
+    o_nd = vec4(len > 1e-4 ? sum.xyz / len : vec3(0.0, 0.0, 1.0), sum.w);
+}

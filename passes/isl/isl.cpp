@@ -1,0 +1,64 @@
+// isl: illuminated streamlines (Zoeckler et al. 1996) on the same pathlet quads, colours,
+// time window and halos as the gbuffer pass: a local-lighting image to compare LineAO with.
+#include "line_pass.hpp"
+
+#include <pathlet/plugin.hpp>
+
+#include <glm/glm.hpp>
+
+namespace {
+
+namespace lp = pathlet::line_pass;
+
+class Isl : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &ctx.program({"isl.vert", "line_quad.geom", "isl.frag"});
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const pathlet::Params& p = ctx.params();
+        ctx.bind_framebuffer({"color"}, "depth");
+        lp::prepare_clear();
+        GLuint fbo = lp::bound_framebuffer();
+        glm::vec3 bg = p.v3("background");
+        const float color[4] = {bg.x, bg.y, bg.z, 1.0f};  // a final image: opaque everywhere
+        const float far = 1.0f;
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, color);
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far);
+
+        prog_->use();
+        glm::vec3 dir = p.v3("light_dir");
+        glm::vec3 to_light = glm::length(dir) > 1e-12f ? -glm::normalize(dir) : glm::vec3(0, 0, 1);
+        prog_->set("u_light", to_light);
+        prog_->set("u_k", glm::vec4(p.f("ambient"), p.f("diffuse"), p.f("specular"), p.f("exponent")));
+        prog_->set("u_diffuse_exponent", p.f("diffuse_exponent"));
+        lp::draw(ctx, *prog_, ranges_);
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+    pathlet::GpuScene::Ranges ranges_;
+};
+
+pathlet::PassTypeInfo isl_type() {
+    pathlet::PassTypeBuilder b("isl",
+                               "illuminated streamlines (Zoeckler et al.): pathlet quads lit from their tangent, "
+                               "with the gbuffer pass's colours, time window and halos");
+    lp::declare_params(b)
+        .param_vec3("light_dir", {1.0f, -1.0f, -1.0f},
+                    "direction the light travels, view space (default: from the upper left, in front, into the scene)")
+        .param_float("ambient", 0.2, 0.0, 1.0, "ambient factor on the line colour")
+        .param_float("diffuse", 0.8, 0.0, 2.0, "diffuse factor: sqrt(1 - (L.T)^2)^p times the line colour")
+        .param_float("specular", 0.5, 0.0, 2.0, "white specular factor: max(0, sqrt(1-(L.T)^2) sqrt(1-(V.T)^2) - (L.T)(V.T))^n")
+        .param_float("exponent", 50.0, 1.0, 1000.0, "specular exponent n")
+        .param_float("diffuse_exponent", 1.0, 0.1, 10.0,
+                     "diffuse exponent p (1: Zoeckler's term; larger p darkens lines along the light, cf. Mallo et al.)")
+        .output_texture("color", "rgba8", "the lit image; background colour where there are no lines")
+        .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)");
+    return b.make<Isl>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("isl", { sink->add(isl_type()); })

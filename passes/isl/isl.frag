@@ -1,0 +1,22 @@
+#version 450 core
+// Illuminated streamlines (Zoeckler et al. 1996): Phong lighting maximised over the normals
+// around the tangent, so it needs only T. L and V point away from the surface.
+#define LINE_STAGE_FRAGMENT
+#include "line_common.glsl"
+
+uniform vec3 u_light;  // towards the light, view space, unit
+uniform vec4 u_k;      // ambient, diffuse, specular, specular exponent n
+uniform float u_diffuse_exponent;
+
+layout(location = 0) out vec4 o_color;
+
+void main() {
+    LineFrag f = line_fragment();
+    float lt = dot(u_light, f.tangent), vt = dot(f.to_viewer, f.tangent);
+    float sl = sqrt(max(1.0 - lt * lt, 0.0)), sv = sqrt(max(1.0 - vt * vt, 0.0));
+    float diffuse = pow(sl, u_diffuse_exponent);
+    float specular = pow(max(sl * sv - lt * vt, 0.0), u_k.w);
+    vec3 lit = f.color * (u_k.x + u_k.y * diffuse) + vec3(u_k.z * specular);
+    o_color = vec4(line_halo_tint(clamp(lit, 0.0, 1.0), f), 1.0);
+    gl_FragDepth = line_window_depth(f.depth01);
+}

@@ -1,0 +1,149 @@
+// lineao: the LineAO term per pixel (shared/LINEAO.md). The per-level constants (sample
+// counts, radius growth, delta(l)) and the sample kernel are computed here once per frame
+// and passed as uniforms, so the shader has uniform loop bounds and no recompiles.
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr int kMaxLevels = 8;    // = MAX_LEVELS in lineao.frag
+constexpr int kMaxKernel = 512;  // = u_kernel's size; 128 * H(8) = 348 fits
+
+// Van der Corput radical inverse in base 2: well-spread radial offsets in [0,1).
+float radical_inverse(uint32_t i) {
+    uint32_t b = i;
+    b = (b << 16u) | (b >> 16u);
+    b = ((b & 0x55555555u) << 1u) | ((b & 0xAAAAAAAAu) >> 1u);
+    b = ((b & 0x33333333u) << 2u) | ((b & 0xCCCCCCCCu) >> 2u);
+    b = ((b & 0x0F0F0F0Fu) << 4u) | ((b & 0xF0F0F0F0u) >> 4u);
+    b = ((b & 0x00FF00FFu) << 8u) | ((b & 0xFF00FF00u) >> 8u);
+    return float(b) * 2.3283064365386963e-10f;
+}
+
+struct Levels {
+    int count = 0;
+    int first[kMaxLevels] = {}, samples[kMaxLevels] = {};
+    float growth[kMaxLevels] = {}, delta[kMaxLevels] = {};
+    std::vector<glm::vec4> kernel;
+};
+
+Levels make_levels(const pathlet::Params& p) {
+    Levels L;
+    L.count = std::clamp(p.i("radii"), 1, kMaxLevels);
+    const int s_h = std::max(1, p.i("samples"));
+    const bool running_sum = p.s("radius_growth") == "running_sum";
+    const float delta0 = p.f("delta0");
+    const float golden = 2.39996322972865332f;  // golden angle (rad)
+    for (int l = 0; l < L.count; ++l) {
+        const float fl = float(l), sr = float(L.count);
+        L.samples[l] = std::max(1, s_h / (l + 1));  // seed eq. 6
+        L.first[l] = int(L.kernel.size());
+        // Growth in line widths beyond r0. linear: paper, r0 + l*z(P). running_sum: the
+        // authors' 1.5, 4, 7.5, 12 ... shifted so level 0 is r0 too (0, 2.5, 6, 10.5 ...).
+        L.growth[l] = running_sum ? 0.5f * fl * (fl + 4.0f) : fl;
+        // delta(l) = (1 - l/s_r)^2 * density weight (paper; the code's s_r - 1 breaks at the
+        // last level), guarded above delta0 so smoothstep's edges stay ordered.
+        const float d = (1.0f - fl / sr) * (1.0f - fl / sr) * p.f("density_weight");
+        L.delta[l] = std::max(d, delta0 + std::max(1e-6f, delta0 * 1e-3f));
+        // Fibonacci hemisphere around +z (uniform in area), rotated per level.
+        const int n = L.samples[l];
+        for (int i = 0; i < n; ++i) {
+            const float z = 1.0f - (float(i) + 0.5f) / float(n);
+            const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+            const float phi = float(i) * golden + 1.3f * fl;
+            L.kernel.emplace_back(r * std::cos(phi), r * std::sin(phi), z, radical_inverse(uint32_t(i)));
+        }
+    }
+    return L;
+}
+
+class LineAO : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "lineao.frag"}); }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const auto& p = ctx.params();
+        const Levels L = make_levels(p);
+        const bool pyramid = p.b("use_pyramid") && ctx.connected("pyramid");
+        glm::vec3 light = p.v3("light_dir");
+        light = glm::length(light) > 1e-6f ? glm::normalize(light) : glm::vec3(0, 0, 1);
+
+        prog_->use();
+        prog_->set("u_levels", L.count);
+        glUniform1iv(prog_->loc("u_first"), L.count, L.first);
+        glUniform1iv(prog_->loc("u_count"), L.count, L.samples);
+        glUniform1fv(prog_->loc("u_growth"), L.count, L.growth);
+        glUniform1fv(prog_->loc("u_delta"), L.count, L.delta);
+        glUniform4fv(prog_->loc("u_kernel"), GLsizei(std::min<size_t>(L.kernel.size(), kMaxKernel)),
+                     glm::value_ptr(L.kernel[0]));
+        prog_->set("u_r0", p.f("r0"));
+        prog_->set("u_line_width", p.f("line_width"));
+        prog_->set("u_strength", p.f("strength"));
+        prog_->set("u_delta0", p.f("delta0"));
+        prog_->set("u_use_pyramid", pyramid ? 1 : 0);
+        prog_->set("u_occluder_light", p.b("occluder_light") ? 1 : 0);
+        prog_->set("u_light", light);
+        prog_->set("u_exponent", p.f("exponent"));
+        glUniform1ui(prog_->loc("u_seed"), uint32_t(p.i("seed")));
+
+        glBindTextureUnit(0, ctx.texture("normal_depth").id);
+        glBindTextureUnit(2, ctx.texture("zoom").id);
+        if (pyramid) {
+            pathlet::Texture pyr = ctx.texture("pyramid");
+            glBindTextureUnit(1, pyr.id);
+            prog_->set("u_max_lod", pyr.mips - 1);
+        } else {
+            glBindTextureUnit(1, ctx.texture("normal_depth").id);  // never read; keeps unit 1 valid
+            prog_->set("u_max_lod", 0);
+        }
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        ctx.bind_framebuffer({"ao"});
+        ctx.draw_fullscreen();
+        for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
+        ctx.stat("samples per pixel", double(L.kernel.size()));
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+};
+
+pathlet::PassTypeInfo lineao_type() {
+    return pathlet::PassTypeBuilder("lineao",
+                                    "LineAO (Eichelbaum et al. 2013): multi-radius screen-space ambient occlusion "
+                                    "for dense lines; 1 = unoccluded")
+        .param_int("samples", 32, 1, 128, "s_h: samples of level 0; level l takes s_h/(l+1)")
+        .param_int("radii", 3, 1, kMaxLevels, "s_r: number of radii (hemispheres / pyramid levels)")
+        .param_float("r0", 2.0, 0.0, 100.0, "first sampling radius in pixels (about the line width on screen)")
+        .param_float("line_width", 0.5, 0.0, 1e6,
+                     "world units per radius step: r_l grows by zoom(P)*line_width px per level; set it to the "
+                     "gbuffer's line width so one step is one line width on screen")
+        .param_enum("radius_growth", "linear", {"linear", "running_sum"},
+                    "linear: r_l = r0 + l*w (paper eq. 6); running_sum: r0 + (0, 2.5, 6, 10.5, ..)*w, the authors' "
+                    "1.5/4/7.5 sum (w = line width on screen)")
+        .param_float("strength", 1.0, 0.0, 5.0, "total strength: AO = 1 - strength/s_r * sum of levels")
+        .param_float("density_weight", 1.0, 0.001, 2.0, "scales delta(l) = (1 - l/s_r)^2, the depth cut-off")
+        .param_float("delta0", 1e-6, 0.0, 0.1, "delta0: smallest depth difference (normalised) that occludes")
+        .param_bool("use_pyramid", true, "level l samples mip l of `pyramid` (when connected); else level 0")
+        .param_bool("occluder_light", true, "add the occluder's diffuse reflection to the light term")
+        .param_vec3("light_dir", glm::vec3(0, 0, 1), "direction to the light in view space (normalised)")
+        .param_float("exponent", 100.0, 1.0, 1000.0, "Blinn-Phong exponent of the occluder's specular term")
+        .param_int("seed", 1, 0, 2147483647, "seed of the fixed per-pixel noise (same image every run)")
+        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
+        .input_texture("pyramid", "rgba16f", "gauss_pyramid output; mip l is read by level l", true)
+        .input_texture("zoom", "r32f", "pixels per world unit at the fragment")
+        .input_texture("color", "any", "line colour (not used by the AO term; accepted for graph symmetry)", true)
+        .output_texture("ao", "r16f", "ambient occlusion, 1 = unoccluded, background 1")
+        .make<LineAO>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("lineao", { sink->add(lineao_type()); })

@@ -1,0 +1,86 @@
+#version 450 core
+// LineAO (Eichelbaum et al. 2013) as specified in shared/LINEAO.md. Loop bounds and every
+// per-level constant are uniforms (computed once on the CPU in lineao.cpp): cheaper on
+// llvmpipe for sparse line images, and parameter changes need no recompile.
+#include "lineao_common.glsl"
+
+#define MAX_LEVELS 8
+
+layout(location = 0) out float o_ao;
+layout(binding = 0) uniform sampler2D u_nd;       // level-0 normal (xyz) + linear depth (w)
+layout(binding = 1) uniform sampler2D u_pyramid;  // mip l = level l (only read when u_use_pyramid)
+layout(binding = 2) uniform sampler2D u_zoom;     // px per world unit at the fragment
+
+uniform int u_levels;                   // s_r
+uniform int u_first[MAX_LEVELS];        // level l's first kernel vector
+uniform int u_count[MAX_LEVELS];        // s_h / (l + 1)
+uniform float u_growth[MAX_LEVELS];     // r_l = r0 + growth_l * line width on screen
+uniform float u_delta[MAX_LEVELS];      // delta(l), already guarded > delta0
+uniform vec4 u_kernel[512];             // xyz: unit hemisphere direction (+z), w: radial base in [0,1)
+uniform float u_r0;                     // px
+uniform float u_line_width;             // world units
+uniform float u_strength;
+uniform float u_delta0;
+uniform bool u_use_pyramid;
+uniform int u_max_lod;
+uniform bool u_occluder_light;
+uniform vec3 u_light;                   // unit, view space
+uniform float u_exponent;
+uniform uint u_seed;
+
+vec4 fetch_level(ivec2 q, int level) {
+    if (!u_use_pyramid || level == 0) return texelFetch(u_nd, q, 0);
+    int lod = min(level, u_max_lod);
+    ivec2 s = textureSize(u_pyramid, lod);
+    return texelFetch(u_pyramid, min(q >> lod, s - 1), lod);
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 nd = texelFetch(u_nd, p, 0);
+    if (!nd_is_geometry(nd)) {  // background: skipped, unoccluded
+        o_ao = 1.0;
+        return;
+    }
+    vec3 n = normalize(nd.xyz);
+    float d = nd.w;
+    ivec2 size = textureSize(u_nd, 0);
+    float width_px = texelFetch(u_zoom, p, 0).r * u_line_width;
+
+    // Fixed per-pixel rotation about the view axis and radial offset: reproducible noise.
+    vec2 rnd = lineao_rand2(lineao_hash3(uvec3(p, u_seed)));
+    float ang = 6.28318530718 * rnd.x;
+    mat2 rot = mat2(cos(ang), sin(ang), -sin(ang), cos(ang));
+
+    float line_ao = 0.0;
+    for (int l = 0; l < u_levels; ++l) {
+        float radius = u_r0 + u_growth[l] * width_px;
+        float sum = 0.0;
+        int used = 0;  // n_l: samples on screen and on geometry
+        for (int i = 0; i < u_count[l]; ++i) {
+            vec4 k = u_kernel[u_first[l] + i];
+            vec3 w = vec3(rot * k.xy, k.z);
+            w = dot(w, n) < 0.0 ? -w : w;  // into the hemisphere of n (side of the tube)
+            float len = 0.25 + 0.75 * fract(k.w + rnd.y);
+            ivec2 q = ivec2(floor(gl_FragCoord.xy + w.xy * (len * radius)));
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+            vec4 occ = fetch_level(q, l);
+            if (!nd_is_geometry(occ)) continue;
+            ++used;
+            float dd = d - occ.w;       // > 0: the sample is in front of P
+            if (dd <= u_delta0) continue;  // V = 1: not occluded
+            float g_depth = 1.0 - smoothstep(u_delta0, u_delta[l], dd);
+            // Light reflected by the occluder towards P (Blinn-Phong on the occluder's
+            // normal, weighted by P's cosine to w); clamped so it never brightens.
+            vec3 no = normalize(occ.xyz);
+            float cos_p = max(dot(w, n), 0.0);
+            vec3 h = u_light + w;  // zero when w points straight away from the light
+            float spec = dot(h, h) > 1e-8 ? pow(max(dot(normalize(h), no), 0.0), u_exponent) : 0.0;
+            float diff = u_occluder_light ? max(dot(no, u_light), 0.0) : 0.0;
+            float g_light = 1.0 - min(cos_p * (spec + diff), 1.0);
+            sum += g_depth * g_light;
+        }
+        line_ao += used > 0 ? sum / float(used) : 0.0;  // empty level: 0, never NaN
+    }
+    o_ao = clamp(1.0 - u_strength / float(u_levels) * line_ao, 0.0, 1.0);
+}

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Pathlet needs that are not installed yet (root or sudo).
+set -euo pipefail
+PKGS=(
+  build-essential cmake pkg-config                  # toolchain
+  libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri   # GL 4.5 via EGL; llvmpipe when there is no GPU
+  libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev
+  libopenimageio-dev openimageio-tools              # image files (tools: OIIO's CMake targets expect them)
+  zlib1g-dev libhdf5-dev                            # .vtp/.vti zlib blocks; 4D flow HDF5 volumes
+  libgtest-dev libbenchmark-dev                     # tests and benchmarks
+)
+OPTIONAL=(ffmpeg)                                   # MP4 export, only if it installs
+missing=()
+for p in "${PKGS[@]}" "${OPTIONAL[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: everything is installed"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${PKGS[@]}" >/dev/null
+$SUDO apt-get install -y -qq --no-install-recommends "${OPTIONAL[@]}" >/dev/null 2>&1 \
+  || echo "install-deps: ffmpeg not installed; videos are skipped, image sequences still work"

@@ -1,0 +1,54 @@
+#version 450 core
+// One line-strip segment -> one view-aligned quad (4-vertex strip). The quad is clipped to
+// the time window by interpolating in time, so pathlet heads and tails move smoothly instead
+// of jumping a whole segment per data step. Each end uses the per-point tangent, so the
+// quads of neighbouring segments meet at the same edge (smooth joints, no gaps).
+#define LINE_STAGE_GEOMETRY
+#include "line_common.glsl"
+
+layout(lines) in;
+layout(triangle_strip, max_vertices = 4) out;
+
+bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+void emit_end(vec3 p_world, vec3 t_world, float speed) {
+    vec3 p = (u_view * vec4(p_world, 1.0)).xyz;
+    vec3 t = line_safe_normalize(mat3(u_view) * t_world, vec3(0.0, 1.0, 0.0));
+    vec3 to_viewer = line_safe_normalize(-p, vec3(0.0, 0.0, 1.0));
+    // Across the line and facing the viewer; a line seen end-on gets any perpendicular.
+    vec3 side = cross(t, to_viewer);
+    if (dot(side, side) < 1e-12) side = cross(vec3(0.0, 1.0, 0.0), to_viewer);
+    if (dot(side, side) < 1e-12) side = cross(vec3(1.0, 0.0, 0.0), to_viewer);
+    side = normalize(side);
+    for (int k = 0; k < 2; ++k) {
+        float s = k == 0 ? -1.0 : 1.0;
+        g_out.pos_view = p + s * u_half_width * side;
+        g_out.side = side;
+        g_out.tangent = t;
+        g_out.s = s;
+        g_out.speed = speed;
+        g_out.line_id = v_in[0].line_id;
+        gl_Position = u_proj * vec4(g_out.pos_view, 1.0);
+        EmitVertex();
+    }
+}
+
+void main() {
+    vec3 p0 = v_in[0].position, p1 = v_in[1].position;
+    if (!finite3(p0) || !finite3(p1)) return;  // bad data points: skip, never NaN quads
+    float t0 = v_in[0].time, t1 = v_in[1].time;
+    float fa = 0.0, fb = 1.0;
+    if (u_windowed != 0) {
+        if (t1 < u_window.x || t0 > u_window.y) return;
+        float dt = t1 - t0;
+        if (dt > 1e-9) {
+            fa = clamp((u_window.x - t0) / dt, 0.0, 1.0);
+            fb = clamp((u_window.y - t0) / dt, 0.0, 1.0);
+        }
+    }
+    vec3 ta = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, fa), v_in[0].tangent);
+    vec3 tb = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, fb), v_in[1].tangent);
+    emit_end(mix(p0, p1, fa), ta, mix(v_in[0].speed, v_in[1].speed, fa));
+    emit_end(mix(p0, p1, fb), tb, mix(v_in[0].speed, v_in[1].speed, fb));
+    EndPrimitive();
+}

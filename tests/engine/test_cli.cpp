@@ -1,0 +1,145 @@
+// The command line: exit codes (0 ok, 1 failed work, 2 bad usage), help that teaches,
+// errors that name the file and place, and nothing half-written.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int code = -1;
+    std::string out, err;
+};
+
+CliRun pathlet(const std::string& args) {
+    fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs";
+    fs::create_directories(dir);
+    std::string out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
+    std::string cmd = std::string(PATHLET_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+    int status = std::system(cmd.c_str());
+    CliRun r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    auto slurp = [](const std::string& p) {
+        std::ifstream in(p);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    };
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+}
+
+std::string src(const std::string& rel) { return std::string(PATHLET_SOURCE_DIR) + "/" + rel; }
+
+}  // namespace
+
+TEST(Cli, NoArgumentsPrintsOverviewAndExits2) {
+    CliRun r = pathlet("");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.out.find("commands:"), std::string::npos);
+    EXPECT_NE(r.out.find("render"), std::string::npos);
+}
+
+TEST(Cli, HelpExitsZeroAndTeachesWithExamples) {
+    for (const char* cmd : {"render", "passes", "validate", "graph", "bench"}) {
+        CliRun r = pathlet(std::string(cmd) + " --help");
+        EXPECT_EQ(r.code, 0) << cmd;
+        EXPECT_NE(r.out.find("usage: pathlet " + std::string(cmd)), std::string::npos) << cmd;
+        EXPECT_NE(r.out.find("examples:"), std::string::npos) << cmd;
+    }
+}
+
+TEST(Cli, UnknownCommandAndOptionExit2WithAHint) {
+    EXPECT_EQ(pathlet("rendr").code, 2);
+    CliRun r = pathlet("render --siz 10x10");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("did you mean --size"), std::string::npos) << r.err;
+    r = pathlet("render --size 10by10");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("WIDTHxHEIGHT"), std::string::npos) << r.err;
+    r = pathlet("render --time 5:1");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("END is before START"), std::string::npos) << r.err;
+}
+
+TEST(Cli, PassesListsTypesWithFilesAndDescribes) {
+    CliRun r = pathlet("passes");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("blur"), std::string::npos);
+    EXPECT_NE(r.out.find("blur.so"), std::string::npos);
+    r = pathlet("passes --describe blur");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find("radius (int, default 4, range [0, 64])"), std::string::npos) << r.out;
+    r = pathlet("passes --describe blurr");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("did you mean 'blur'"), std::string::npos) << r.err;
+}
+
+TEST(Cli, ValidateReportsEveryErrorWithPointerAndExits1) {
+    fs::path bad = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_bad_graph.json";
+    std::ofstream(bad) << R"({"version": 1,
+      "passes": [{"name": "a", "type": "blurr", "outputs": {"dst": "x"}},
+                 {"name": "b", "type": "blur", "params": {"radius": 1000}, "inputs": {"src": "nowhere"}}],
+      "outputs": [{"resource": "x"}]})";
+    CliRun r = pathlet("validate " + bad.string());
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(bad.string() + ":/passes/0/type"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("did you mean 'blur'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("/passes/1/params/radius"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("/passes/1/inputs/src"), std::string::npos) << r.err;
+    EXPECT_EQ(pathlet("validate " + src("graphs/demo_blur.json")).code, 0);
+}
+
+TEST(Cli, GraphPlanAndDot) {
+    CliRun r = pathlet("graph " + src("graphs/demo_blur.json") + " --plan --size 64x64");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("unused"), std::string::npos);  // the culled pass is explained
+    fs::path dot = fs::path(PATHLET_TEST_BINARY_DIR) / "demo.dot";
+    fs::remove(dot);
+    r = pathlet("graph " + src("graphs/demo_blur.json") + " --dot " + dot.string());
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::ifstream in(dot);
+    std::string first;
+    std::getline(in, first);
+    EXPECT_NE(first.find("digraph"), std::string::npos);
+}
+
+TEST(Cli, RenderWritesImagesAndTimingTable) {
+    fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_render";
+    fs::remove_all(out);
+    CliRun r = pathlet("render " + src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
+                    " --time 0:1:0.5 --size 48x32 --out " + out.string() + " --quiet --report " +
+                    (out / "timing").string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out / "demo_blur" / "00000.png"));
+    EXPECT_TRUE(fs::exists(out / "demo_blur" / "00002.png"));
+    EXPECT_TRUE(fs::exists(out / "timing.trace.json"));
+    EXPECT_NE(r.out.find("soft"), std::string::npos) << r.out;  // the blur pass has a row
+    // No temporary files are left behind.
+    for (const auto& e : fs::recursive_directory_iterator(out))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST(Cli, RenderWithMissingDataOrGraphFailsWith1) {
+    CliRun r = pathlet("render " + src("graphs/demo_blur.json") + " --data /no/such/file.vtk --quiet");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/no/such/file.vtk"), std::string::npos) << r.err;
+    r = pathlet("render /no/such/graph.json --data " + src("tests/engine/data/two_lines.vtk") + " --quiet");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/no/such/graph.json"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadSetOverrideIsReported) {
+    CliRun r = pathlet("render " + src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
+                    " --set soft.radiuss=2 --no-images --quiet --time 0");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;  // did you mean
+}

@@ -1,0 +1,328 @@
+// Bad input, one test per failure class from the issue: every problem is either repaired
+// with a counted warning or rejected with a DataError "<file>: line N: ..." / "<file>:
+// byte N: ...". Bad files are made here by mutating good bytes. A global operator new
+// records the largest single allocation, so "no giant allocation" is checked, not assumed.
+#include "io/pathline_formats.hpp"
+#include "io/pathline_io.hpp"
+#include "io/zlib_blocks.hpp"
+#include "io_test_util.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <regex>
+
+static std::atomic<size_t> g_largest_alloc{0};
+#if !defined(__SANITIZE_ADDRESS__)  // ASan owns operator new; its allocator reports huge requests itself
+void* operator new(size_t n) {
+    size_t prev = g_largest_alloc.load(std::memory_order_relaxed);
+    while (n > prev && !g_largest_alloc.compare_exchange_weak(prev, n)) {}
+    if (void* p = std::malloc(n ? n : 1)) return p;
+    throw std::bad_alloc();
+}
+void* operator new[](size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete[](void* p, size_t) noexcept { std::free(p); }
+#endif
+
+using namespace pathlet;
+using namespace pathlet::io;
+
+namespace {
+
+struct IoBadInput : ::testing::Test {
+    std::string dir = iotest::temp_dir();
+    std::string put(const std::string& name, const std::string& bytes) {
+        std::string p = dir + "/" + name;
+        iotest::write_bytes(p, bytes);
+        return p;
+    }
+    // Loads and expects a DataError that names the file, a location and `needle`.
+    std::string expect_error(const std::string& path, const std::string& needle, const LoadOptions& o = {}) {
+        try {
+            load_pathlines(path, o);
+        } catch (const DataError& e) {
+            std::string m = e.what();
+            EXPECT_TRUE(std::regex_search(m, std::regex("^" + std::regex_replace(path, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+                                                        ": (line|byte) [0-9]+: ")))
+                << m;
+            EXPECT_NE(m.find(needle), std::string::npos) << m;
+            return m;
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "not a DataError: " << e.what();
+            return "";
+        }
+        ADD_FAILURE() << path << ": loaded, expected an error containing '" << needle << "'";
+        return "";
+    }
+    static bool has(const LoadReport& r, const std::string& needle) {
+        for (auto& w : r.warnings)
+            if (w.find(needle) != std::string::npos) return true;
+        return false;
+    }
+};
+
+const char* kAscii51 =
+    "# vtk DataFile Version 5.1\nt\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 2 0 0 3 0 0\n"
+    "LINES 3 4\nOFFSETS vtktypeint64\n0 2 4\nCONNECTIVITY vtktypeint64\n0 1 2 3\n"
+    "POINT_DATA 4\nSCALARS time float\nLOOKUP_TABLE default\n0 1 0 1\n";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+    auto p = s.find(from);
+    EXPECT_NE(p, std::string::npos) << from;
+    return p == std::string::npos ? s : s.replace(p, from.size(), to);
+}
+
+TEST_F(IoBadInput, TruncatedFilesEveryFormat) {
+    Pathlines p = iotest::make_lines(6, 20);
+    using E = VtpWriteOptions::Encoding;
+    std::vector<std::pair<std::string, std::string>> files = {
+        {"a.vtk", write_vtk_legacy(p, {false, false})}, {"b.vtk", write_vtk_legacy(p, {true, false})},
+        {"c.vtk", write_vtk_legacy(p, {true, true})},
+    };
+    for (E e : {E::Ascii, E::Inline, E::AppendedRaw, E::AppendedBase64})
+        for (bool z : {false, true}) {
+            VtpWriteOptions o;
+            o.encoding = e;
+            o.zlib = z && e != E::Ascii;
+            files.push_back({"v" + std::to_string(int(e)) + std::to_string(z) + ".vtp", write_vtp(p, o)});
+        }
+    std::string native = dir + "/n.pathlet";
+    save_pathlines(p, native, PathlineFormat::Native);
+    files.push_back({"n.pathlet", iotest::read_bytes(native)});
+    for (auto& [name, bytes] : files) {
+        // Cutting anywhere never crashes; the half-way cut must be reported.
+        for (int k = 1; k < 40; ++k) {
+            std::string path = put(name, bytes.substr(0, bytes.size() * size_t(k) / 40));
+            try {
+                load_pathlines(path);
+            } catch (const DataError& e) {
+                EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+            }
+        }
+        expect_error(put(name, bytes.substr(0, bytes.size() / 2)), "");
+    }
+}
+
+TEST_F(IoBadInput, CountsDisagreeWithData) {
+    expect_error(put("a.vtk", replace(kAscii51, "POINTS 4", "POINTS 5")), "");  // 4.. values then "LINES" is not a number
+    expect_error(put("b.vtk", replace(kAscii51, "POINT_DATA 4", "POINT_DATA 3")), "counts disagree");
+    std::string v42 = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 2 0 0 3 0 0\n"
+                      "LINES 2 7\n2 0 1\n3 2 3 0\nPOINT_DATA 4\nSCALARS time float\nLOOKUP_TABLE default\n0 1 0 1\n";
+    expect_error(put("c.vtk", replace(v42, "LINES 2 7", "LINES 2 6")), "counts disagree");
+    expect_error(put("d.vtk", replace(v42, "3 2 3 0", "5 2 3 0")), "counts disagree");
+    // VTP: the binary header disagrees with NumberOfPoints.
+    Pathlines p = iotest::make_lines(2, 5);
+    std::string vtp = write_vtp(p, {});
+    std::string np = "NumberOfPoints=\"" + std::to_string(p.point_count()) + "\"";
+    expect_error(put("e.vtp", replace(vtp, np, "NumberOfPoints=\"12\"")), "counts disagree");
+}
+
+TEST_F(IoBadInput, DeclaredSizesBeyondFileNoGiantAllocation) {
+    Pathlines p = iotest::make_lines(2, 5);
+    std::string native = dir + "/n.pathlet";
+    save_pathlines(p, native, PathlineFormat::Native);
+    std::string nb = iotest::read_bytes(native);
+    uint64_t huge = 3'000'000'000ull;
+    std::memcpy(nb.data() + 16, &huge, 8);
+    g_largest_alloc = 0;
+    expect_error(put("a.vtk", replace(kAscii51, "POINTS 4", "POINTS 2000000000")), "more than the");
+    expect_error(put("b.vtk", replace(replace(kAscii51, "ASCII", "BINARY"), "POINTS 4", "POINTS 1500000000")), "more than the");
+    expect_error(put("c.vtk", replace(kAscii51, "LINES 3 4", "LINES 3 4000000000000")), "more than the");
+    expect_error(put("d.pathlet", nb), "cannot fit");
+    VtpWriteOptions o;
+    o.encoding = VtpWriteOptions::Encoding::AppendedRaw;
+    std::string np = "NumberOfPoints=\"" + std::to_string(p.point_count()) + "\"";
+    expect_error(put("e.vtp", replace(write_vtp(p, o), np, "NumberOfPoints=\"+4000000000\"")), "more than the file can hold");
+    expect_error(put("f.vtp", replace(write_vtp(p, o), np, "NumberOfPoints=\"400000000\"")), "");
+    EXPECT_LT(g_largest_alloc.load(), size_t(16) << 20) << "a bad count caused a large allocation";
+}
+
+TEST_F(IoBadInput, NanAndInfPointsDroppedAndLinesSplit) {
+    Pathlines p = iotest::make_lines(3, 10);
+    p.position[0].x = NAN;                      // line 0: first point -> just dropped
+    p.position[p.lines[1].first + 4].y = INFINITY;  // line 1: middle -> split in two
+    p.velocity[p.lines[2].first + p.lines[2].count - 1].z = NAN;  // line 2: last point (bad velocity) -> dropped
+    for (auto fmt : {PathlineFormat::Native, PathlineFormat::VtkAscii, PathlineFormat::VtpBinary}) {
+        std::string path = dir + "/nan" + (fmt == PathlineFormat::Native ? ".pathlet" : fmt == PathlineFormat::VtkAscii ? ".vtk" : ".vtp");
+        save_pathlines(p, path, fmt);
+        LoadReport r;
+        Pathlines q = load_pathlines(path, {}, &r);
+        EXPECT_EQ(q.line_count(), 4u);
+        EXPECT_EQ(q.point_count(), p.point_count() - 3);
+        EXPECT_TRUE(has(r, "dropped 3 non-finite (NaN/inf) points in 3 lines (split into 1 extra lines)")) << path;
+        EXPECT_TRUE(q.bounds().valid());
+    }
+}
+
+TEST_F(IoBadInput, ZeroLengthSegmentsDropped) {
+    Pathlines p = iotest::make_lines(2, 6);
+    // Repeat a point (with a later time) twice in line 0.
+    auto dup = [&](uint32_t at) {
+        p.position.insert(p.position.begin() + at + 1, p.position[at]);
+        p.time.insert(p.time.begin() + at + 1, p.time[at] + 1e-5f);
+        p.velocity.insert(p.velocity.begin() + at + 1, p.velocity[at]);
+        p.lines[0].count++;
+        p.lines[1].first++;
+    };
+    dup(2);
+    dup(2);
+    std::string path = dir + "/dup.pathlet";
+    save_pathlines(p, path, PathlineFormat::Native);
+    LoadReport r;
+    Pathlines q = load_pathlines(path, {}, &r);
+    EXPECT_EQ(q.point_count(), p.point_count() - 2);
+    EXPECT_TRUE(has(r, "dropped 2 duplicate consecutive points (zero-length segments) in 1 lines")) << r.warnings.size();
+}
+
+TEST_F(IoBadInput, OnePointLinesDropped) {
+    std::string s = replace(kAscii51, "0 2 4", "0 1 4");  // lines of 1 and 3 points
+    LoadReport r;
+    Pathlines q = load_pathlines(put("a.vtk", replace(s, "0 1 0 1\n", "0 0 1 2\n")), {}, &r);
+    EXPECT_EQ(q.line_count(), 1u);
+    EXPECT_EQ(q.point_count(), 3u);
+    EXPECT_TRUE(has(r, "dropped 1 lines with fewer than 2 distinct points"));
+    EXPECT_TRUE(has(r, "derived velocity by finite differences"));
+}
+
+TEST_F(IoBadInput, MissingTimeDerivedFromVelocityOrClearError) {
+    std::string no_time = replace(kAscii51, "SCALARS time float\nLOOKUP_TABLE default\n0 1 0 1\n",
+                                  "VECTORS velocity float\n2 0 0 2 0 0 1 0 0 1 0 0\n");
+    LoadReport r;
+    Pathlines q = load_pathlines(put("a.vtk", no_time), {}, &r);
+    ASSERT_EQ(q.line_count(), 2u);
+    EXPECT_FLOAT_EQ(q.time[1], 0.5f);  // 1 unit at speed 2
+    EXPECT_FLOAT_EQ(q.time[3], 1.0f);  // 1 unit at speed 1
+    EXPECT_TRUE(has(r, "derived time from arc length / speed"));
+    std::string neither = replace(kAscii51, "SCALARS time float", "SCALARS pressure float");
+    std::string m = expect_error(put("b.vtk", neither), "Point arrays present: pressure (1 comp)");
+    EXPECT_NE(m.find("--time-array"), std::string::npos);
+    // Naming the array fixes it.
+    LoadOptions o;
+    o.time_array = "pressure";
+    EXPECT_EQ(load_pathlines(put("b.vtk", neither), o).line_count(), 2u);
+}
+
+TEST_F(IoBadInput, DecompressionBombCapped) {
+    Pathlines p = iotest::make_lines(1, 3);  // 3 points: Points array is 36 bytes
+    VtpWriteOptions o;
+    o.encoding = VtpWriteOptions::Encoding::AppendedRaw;
+    o.zlib = true;
+    o.header64 = false;
+    std::string good = write_vtp(p, o);
+    // Replace the Points array's blocks with 64 MiB of zeros (~64 KiB compressed) whose header
+    // claims 36 bytes: inflating must stop at the claim.
+    std::string bomb_body = zlib_blocks_encode(std::string(64u << 20, '\0'), 4, false, 64u << 20);
+    std::string bomb = bomb_body;
+    uint32_t small = 36;
+    std::memcpy(bomb.data() + 4, &small, 4);  // block size
+    std::memcpy(bomb.data() + 8, &small, 4);  // last block size
+    size_t marker = good.find("   _") + 4;
+    size_t points_off = std::stoul(good.substr(good.find("offset=\"", good.find("Name=\"Points\"")) + 8));
+    std::string hacked = good.substr(0, marker);
+    // Points is written third (after time and velocity); put the bomb at the end and point there.
+    std::string appended = good.substr(marker);
+    size_t bomb_at = appended.rfind("\n  </AppendedData>");
+    appended.insert(bomb_at, bomb);
+    hacked += appended;
+    hacked = replace(hacked, "Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" + std::to_string(points_off),
+                     "Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" + std::to_string(bomb_at));
+    g_largest_alloc = 0;
+    expect_error(put("bomb.vtp", hacked), "decompression bomb");
+    EXPECT_LT(g_largest_alloc.load(), size_t(1) << 20);
+    // A header that declares the full 64 MiB disagrees with the 36-byte array: rejected before inflating.
+    std::string honest = good.substr(0, marker) + appended.substr(0, bomb_at) + bomb_body + appended.substr(bomb_at);
+    honest = replace(honest, "offset=\"" + std::to_string(points_off) + "\"", "offset=\"" + std::to_string(bomb_at) + "\"");
+    g_largest_alloc = 0;
+    expect_error(put("bomb2.vtp", honest), "array needs 36");
+    EXPECT_LT(g_largest_alloc.load(), size_t(1) << 20);
+}
+
+TEST_F(IoBadInput, WrongByteOrderDetected) {
+    // A "BINARY" legacy file whose payload is little-endian (a common hand-written mistake).
+    auto le = [](auto v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); };
+    std::string pts;
+    for (float f : {0.5f, 1.25f, 2.0f, 1.5f, 0.75f, 3.0f, 2.5f, 1.0f, 4.0f}) pts += le(f);
+    std::string head = "# vtk DataFile Version 4.2\nt\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n";
+    std::string m = expect_error(put("a.vtk", head + pts + "\nLINES 1 4\n"), "little-endian");
+    // Points that are plausible either way: the cell sizes give it away.
+    std::string ints = le(int32_t(3)) + le(int32_t(0)) + le(int32_t(1)) + le(int32_t(2));
+    std::string zeros(36, '\0');
+    expect_error(put("b.vtk", head + zeros + "\nLINES 1 4\n" + ints + "\n"), "little-endian");
+    // 5.1 offsets.
+    std::string h51 = replace(head, "4.2", "5.1");
+    std::string off = le(int64_t(0)) + le(int64_t(3));
+    std::string conn = le(int64_t(0)) + le(int64_t(1)) + le(int64_t(2));
+    expect_error(put("c.vtk", h51 + zeros + "\nLINES 2 3\nOFFSETS vtktypeint64\n" + off + "\nCONNECTIVITY vtktypeint64\n" + conn + "\n"),
+                 "little-endian");
+}
+
+TEST_F(IoBadInput, NonMonotonicTimeSortedOrReversed) {
+    // Decision: a line whose time only decreases is reversed; any other disorder is sorted
+    // by time (stable), and points repeating the previous time are dropped. All warned.
+    std::string s = replace(kAscii51, "0 1 0 1\n", "1 0 0 1\n");  // line 0 decreasing, line 1 increasing
+    LoadReport r;
+    Pathlines q = load_pathlines(put("a.vtk", s), {}, &r);
+    ASSERT_EQ(q.line_count(), 2u);
+    EXPECT_EQ(q.position[0], glm::vec3(1, 0, 0));
+    EXPECT_TRUE(has(r, "reversed 1 lines"));
+    std::string s2 = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 2 0 0 3 0 0\n"
+                     "LINES 1 5\n4 0 1 2 3\nPOINT_DATA 4\nSCALARS time float\nLOOKUP_TABLE default\n0 2 1 3\n";
+    LoadReport r2;
+    Pathlines q2 = load_pathlines(put("b.vtk", s2), {}, &r2);
+    ASSERT_EQ(q2.point_count(), 4u);
+    EXPECT_EQ(q2.position[1], glm::vec3(2, 0, 0));
+    EXPECT_FLOAT_EQ(q2.time[1], 1.0f);
+    EXPECT_TRUE(has(r2, "sorted 1 lines by time"));
+}
+
+TEST_F(IoBadInput, IndexBeyondPointCount) {
+    expect_error(put("a.vtk", replace(kAscii51, "0 1 2 3\n", "0 1 2 99\n")), "point index 99, but there are only 4 points");
+    Pathlines p = iotest::make_lines(1, 4);
+    VtpWriteOptions o;
+    o.encoding = VtpWriteOptions::Encoding::Ascii;
+    expect_error(put("b.vtp", replace(write_vtp(p, o), "0 1 2 3 \n", "0 1 7 3 \n")), "point index 7");
+}
+
+TEST_F(IoBadInput, OffsetsNotMonotone) {
+    expect_error(put("a.vtk", replace(replace(kAscii51, "LINES 3 4", "LINES 4 4"), "0 2 4", "0 3 1 4")), "not monotone");
+    Pathlines p = iotest::make_lines(2, 4);  // offsets "4 9"
+    VtpWriteOptions o;
+    o.encoding = VtpWriteOptions::Encoding::Ascii;
+    expect_error(put("b.vtp", replace(write_vtp(p, o), ">\n          4 9 \n", ">\n          9 4 \n")), "not monotone");
+}
+
+TEST_F(IoBadInput, EmptyDatasetIsEmptyWithWarning) {
+    // Decision: an empty file of a known format is an empty Pathlines plus a warning (the
+    // renderer draws an empty frame); a corrupt one is an error.
+    std::string s = "# vtk DataFile Version 5.1\nt\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n";
+    LoadReport r;
+    EXPECT_TRUE(load_pathlines(put("a.vtk", s), {}, &r).empty());
+    EXPECT_TRUE(has(r, "empty pathline set"));
+    LoadReport r2;
+    EXPECT_TRUE(load_pathlines(put("rows", "\n\n"), {}, &r2).empty());
+    EXPECT_TRUE(has(r2, "empty pathline set"));
+}
+
+TEST_F(IoBadInput, UnsupportedThingsSayWhatToDo) {
+    Pathlines p = iotest::make_lines(1, 4);
+    VtpWriteOptions o;
+    o.zlib = true;
+    expect_error(put("a.vtp", replace(write_vtp(p, o), "vtkZLibDataCompressor", "vtkLZ4DataCompressor")), "only vtkZLibDataCompressor");
+    expect_error(put("b.vtk", replace(kAscii51, "POLYDATA", "UNSTRUCTURED_GRID")), "must be POLYDATA");
+    expect_error(put("c.vtk", replace(kAscii51, "POINT_DATA 4", "GARBAGE 4")), "unexpected keyword 'GARBAGE'");
+    std::string native = dir + "/n.pathlet";
+    save_pathlines(p, native, PathlineFormat::Native);
+    std::string nb = iotest::read_bytes(native);
+    nb[8] = 9;
+    expect_error(put("d.pathlet", nb), "version 9 is not supported");
+    expect_error(put("rows.txt", "1 2 3 4 5 6\n1 2 3 4 5\n"), "not a multiple of 3");
+    std::string m = expect_error(put("rows2.txt", "1 2 3 4 5 6\n1 2 x 4 5 6\n"), "'x' is not a number");
+    EXPECT_NE(m.find(": line 2: "), std::string::npos) << m;
+}
+
+}  // namespace

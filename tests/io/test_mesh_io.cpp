@@ -1,0 +1,100 @@
+// Mesh round trips (STL binary, OBJ, glTF, GLB) and mesh-specific parsing rules.
+#include "io/mesh_io.hpp"
+#include "io_test_util.hpp"
+
+#include <cmath>
+#include <cstring>
+
+using namespace pathlet;
+using namespace pathlet::io;
+
+namespace {
+
+// A closed, irregular octahedron-like mesh with non-round coordinates.
+Mesh make_mesh() {
+    Mesh m;
+    m.position = {{0.1f, 0.2f, 1.3f}, {1.17f, 0.0f, 0.01f}, {0.0f, 1.2345678f, -0.1f},
+                  {-1.0f, 0.3f, 0.0f}, {0.0f, -1.1f, 0.2f}, {0.05f, 0.0f, -1.3333333f}};
+    m.index = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1, 5, 2, 1, 5, 3, 2, 5, 4, 3, 5, 1, 4};
+    m.compute_normals();
+    return m;
+}
+
+bool same(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, 12) == 0; }
+
+TEST(IoMesh, RoundTripEveryFormat) {
+    Mesh m = make_mesh();
+    std::string dir = iotest::temp_dir();
+    for (const char* ext : {".stl", ".obj", ".gltf", ".glb"}) {
+        SCOPED_TRACE(ext);
+        std::string path = dir + "/m" + ext;
+        save_mesh(m, path);
+        LoadReport r;
+        Mesh q = load_mesh(path, &r);
+        ASSERT_EQ(q.position.size(), m.position.size());
+        ASSERT_EQ(q.index, m.index);  // STL merge keeps first-use order, which matches here
+        for (size_t i = 0; i < m.position.size(); ++i) EXPECT_TRUE(same(q.position[i], m.position[i])) << i;
+        ASSERT_EQ(q.normal.size(), m.normal.size());
+        if (std::string(ext) != ".stl") {  // STL has facet normals only; recomputed ones match
+            for (size_t i = 0; i < m.normal.size(); ++i) EXPECT_TRUE(same(q.normal[i], m.normal[i])) << i;
+        }
+    }
+}
+
+TEST(IoMesh, StlAsciiAndMerging) {
+    std::string s = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                    "facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
+    std::string path = iotest::temp_dir() + "/a.stl";
+    iotest::write_bytes(path, s);
+    LoadReport r;
+    Mesh m = load_mesh(path, &r);
+    EXPECT_EQ(r.format, "STL ascii");
+    EXPECT_EQ(m.position.size(), 4u);
+    EXPECT_EQ(m.index, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
+    EXPECT_NEAR(m.normal[0].z, 1.0f, 1e-6f);
+}
+
+TEST(IoMesh, BinaryStlStartingWithSolidIsBinary) {
+    Mesh m = make_mesh();
+    std::string dir = iotest::temp_dir();
+    save_mesh(m, dir + "/a.stl");
+    std::string b = iotest::read_bytes(dir + "/a.stl");
+    std::memcpy(b.data(), "solid facet header", 18);
+    iotest::write_bytes(dir + "/b.stl", b);
+    LoadReport r;
+    EXPECT_EQ(load_mesh(dir + "/b.stl", &r).index.size(), m.index.size());
+    EXPECT_EQ(r.format, "STL binary");
+    iotest::write_bytes(dir + "/c.stl", b.substr(0, b.size() - 7));  // truncated: size rule fails
+    EXPECT_THROW(load_mesh(dir + "/c.stl"), DataError);
+}
+
+TEST(IoMesh, ObjPolygonsNegativeIndicesAndNormals) {
+    std::string s = "# quad + pentagon\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\n"
+                    "f 1/1/1 2/1/1 3/1/1 4/1/1\nv 2 0 0\nv 2 1 0\nf -1 -2 2 3\n";
+    std::string path = iotest::temp_dir() + "/a.obj";
+    iotest::write_bytes(path, s);
+    LoadReport r;
+    Mesh m = load_mesh(path, &r);
+    EXPECT_EQ(m.index.size(), 12u);  // 2 + 2 triangles
+    EXPECT_FALSE(r.warnings.empty());
+    iotest::write_bytes(path, "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+    try {
+        load_mesh(path);
+        FAIL();
+    } catch (const DataError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(path + ": line 3: ", 0), 0u) << e.what();
+    }
+}
+
+TEST(IoMesh, GltfGarbageAndPathlinesRejected) {
+    std::string dir = iotest::temp_dir();
+    iotest::write_bytes(dir + "/a.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ {");
+    EXPECT_THROW(load_mesh(dir + "/a.gltf"), DataError);
+    iotest::write_bytes(dir + "/b.glb", "glTF\x02\0\0\0");
+    EXPECT_THROW(load_mesh(dir + "/b.glb"), DataError);
+    iotest::write_bytes(dir + "/rows", "0 0 0 1 1 1\n");
+    EXPECT_THROW(load_mesh(dir + "/rows"), DataError);
+    EXPECT_THROW(save_mesh(make_mesh(), dir + "/m.ply"), DataError);
+}
+
+}  // namespace

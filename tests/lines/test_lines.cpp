@@ -1,0 +1,421 @@
+// Suite `lines` (lower case so `ctest -R lines` selects it). The line passes on real GL (llvmpipe): goldens of graphs/isl.json and graphs/gbuffer_only.json
+// at 160x120, and the G-buffer contract with lineao (background values, unit normals,
+// linear depth in [0,1], zoom), the time window, halos, determinism and shader errors.
+#include "camera.hpp"
+#include "executor.hpp"
+#include "golden.hpp"
+#include "image_io.hpp"
+#include "renderer.hpp"
+#include "runtime.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace pathlet;
+
+namespace {
+
+const glm::ivec2 kSize{160, 120};
+const std::string kGraphs = std::string(PATHLET_SOURCE_DIR) + "/graphs/";
+const std::string kGoldens = std::string(PATHLET_TEST_SOURCE_DIR) + "/goldens/";
+
+// A bundle of 40 helices around the x axis (4 rings, speeds varying per line and in time)
+// and one isolated, gently waving line beside it; times 0..10 s, 101 points per line.
+const Scene& test_scene() {
+    static const Scene scene = [] {
+        Scene s;
+        Pathlines& pl = s.lines;
+        auto add = [&](auto pos, auto vel) {
+            LineRange r{uint32_t(pl.position.size()), 101};
+            for (int k = 0; k <= 100; ++k) {
+                double t = 0.1 * k;
+                pl.position.push_back(pos(t));
+                pl.velocity.push_back(vel(t));
+                pl.time.push_back(float(t));
+            }
+            pl.lines.push_back(r);
+        };
+        for (int i = 0; i < 40; ++i) {
+            double radius = 1.0 + 0.6 * (i % 4), phase = 2.39996 * i, w = 0.8;
+            double gain = 0.3 + 0.7 * double(i % 7) / 6.0;
+            add([=](double t) { return glm::vec3(4 * t, radius * std::cos(w * t + phase), radius * std::sin(w * t + phase)); },
+                [=](double t) {
+                    double f = gain * (0.6 + 0.4 * std::sin(0.7 * t + i));
+                    return glm::vec3(4 * f, -radius * w * std::sin(w * t + phase) * f, radius * w * std::cos(w * t + phase) * f);
+                });
+        }
+        add([](double t) { return glm::vec3(4 * t, 12 + 0.5 * std::sin(0.5 * t), 0); },
+            [](double t) { return glm::vec3(6, 0.375 * std::cos(0.5 * t), 0); });
+        s.source = "test_lines synthetic bundle";
+        return s;
+    }();
+    return scene;
+}
+
+Runtime& runtime() {
+    // One context and registry for the whole binary; leaked on purpose (no GL teardown order).
+    static Runtime* rt = [] {
+        auto* r = new Runtime;
+        r->load_plugins({});
+        r->ensure_gl(true);
+        return r;
+    }();
+    return *rt;
+}
+
+// Everything a test looks at after one frame: textures by resource name, pass stats.
+struct Frame {
+    std::map<std::string, Image> tex;
+    std::map<std::string, double> stats;
+    Camera camera;
+    const Image& operator[](const std::string& n) const { return tex.at(n); }
+};
+
+Image read_depth(const Texture& t) {
+    Image img;
+    img.width = t.width;
+    img.height = t.height;
+    img.channels = 1;
+    img.is_float = true;
+    std::vector<float> raw(size_t(t.width) * size_t(t.height));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(t.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
+    img.pixels.resize(raw.size());
+    for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
+        for (int x = 0; x < t.width; ++x) img.at(x, y, 0) = raw[size_t(t.height - 1 - y) * size_t(t.width) + size_t(x)];
+    return img;
+}
+
+Image read_int(const Texture& t) {
+    Image img;
+    img.width = t.width;
+    img.height = t.height;
+    img.channels = 1;
+    std::vector<GLint> raw(size_t(t.width) * size_t(t.height));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(t.id, 0, GL_RED_INTEGER, GL_INT, GLsizei(raw.size() * sizeof(GLint)), raw.data());
+    img.pixels.resize(raw.size());
+    for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) img.at(x, y, 0) = float(raw[size_t(t.height - 1 - y) * size_t(t.width) + size_t(x)]);
+    return img;
+}
+
+Frame render_frame(const std::string& graph, double t, std::vector<std::string> sets, std::vector<std::string> names,
+                   const Scene& scene = test_scene(), glm::ivec2 size = kSize) {
+    RenderOptions opt;
+    opt.graph_path = kGraphs + graph;
+    opt.sets = std::move(sets);
+    opt.size = size;
+    opt.time.start = opt.time.end = t;
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    Frame f;
+    RenderResult res = render(runtime(), scene, opt, [&](const Executor& ex, size_t) {
+        for (const auto& n : names) {
+            Texture tx = ex.texture(n);
+            if (tx.internal_format == GL_DEPTH_COMPONENT24) f.tex[n] = read_depth(tx);
+            else if (tx.internal_format == GL_R32I) f.tex[n] = read_int(tx);
+            else f.tex[n] = read_texture(tx.id, tx.width, tx.height, 0, tx.internal_format == GL_R32F ? 1 : 4);
+        }
+    });
+    for (const auto& p : res.profiler.passes())
+        for (const auto& [k, v] : p.stats) f.stats[k] = v;
+    f.camera = frame_bounds(scene.bounds(), size);
+    return f;
+}
+
+const std::vector<std::string> kGbuf{"color", "normal_depth", "zoom", "depth"};
+
+Frame gbuffer(double t, std::vector<std::string> sets = {}) {
+    sets.insert(sets.begin(), "line_width=1.2");
+    return render_frame("gbuffer_only.json", t, sets, kGbuf);
+}
+
+bool covered(const Image& color, int x, int y) { return color.at(x, y, 3) > 0.5f; }
+
+size_t coverage(const Image& color) {
+    size_t n = 0;
+    for (int y = 0; y < color.height; ++y)
+        for (int x = 0; x < color.width; ++x) n += covered(color, x, y);
+    return n;
+}
+
+}  // namespace
+
+TEST(lines, GoldenIsl) {
+    Frame f = render_frame("isl.json", 6.0, {"line_width=1.2", "window=3"}, {"final"});
+    EXPECT_TRUE(matches_golden(f["final"], kGoldens + "isl.png"));
+}
+
+TEST(lines, GoldenGbufferColor) {
+    Frame f = gbuffer(6.0, {"window=3"});
+    EXPECT_TRUE(matches_golden(f["color"], kGoldens + "gbuffer_only.png"));
+}
+
+TEST(lines, GbufferBackgroundIsExactlyTheContract) {
+    Frame f = gbuffer(5.0, {"gbuffer.background=#336699"});
+    const Image &c = f["color"], &nd = f["normal_depth"], &z = f["zoom"], &d = f["depth"];
+    size_t bg = 0;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            if (covered(c, x, y)) {
+                EXPECT_EQ(c.at(x, y, 3), 1.0f);
+                continue;
+            }
+            ++bg;
+            ASSERT_EQ(to_unorm8(c.at(x, y, 0)), 0x33) << x << "," << y;
+            ASSERT_EQ(to_unorm8(c.at(x, y, 1)), 0x66);
+            ASSERT_EQ(to_unorm8(c.at(x, y, 2)), 0x99);
+            ASSERT_EQ(c.at(x, y, 3), 0.0f);
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(nd.at(x, y, k), 0.0f);
+            ASSERT_EQ(nd.at(x, y, 3), 1.0f);
+            ASSERT_EQ(z.at(x, y, 0), 0.0f);
+            ASSERT_EQ(d.at(x, y, 0), 1.0f);
+        }
+    EXPECT_GT(bg, size_t(c.width * c.height / 2));
+    EXPECT_GT(coverage(c), 200u);
+}
+
+TEST(lines, IslBackgroundIsExactlyTheBackgroundColour) {
+    Frame f = render_frame("isl.json", 5.0, {"line_width=1.2", "isl.background=#336699"}, {"final", "isl.depth"});
+    const Image &c = f["final"], &d = f["isl.depth"];
+    size_t bg = 0, lines = 0;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            EXPECT_EQ(c.at(x, y, 3), 1.0f);
+            if (d.at(x, y, 0) < 1.0f) {
+                ++lines;
+                continue;
+            }
+            ++bg;
+            ASSERT_EQ(to_unorm8(c.at(x, y, 0)), 0x33) << x << "," << y;
+            ASSERT_EQ(to_unorm8(c.at(x, y, 1)), 0x66);
+            ASSERT_EQ(to_unorm8(c.at(x, y, 2)), 0x99);
+        }
+    EXPECT_GT(bg, 0u);
+    EXPECT_GT(lines, 200u);
+}
+
+TEST(lines, GbufferValuesAreFiniteUnitAndInRange) {
+    Frame f = gbuffer(5.0, {"window=0"});
+    const Image &c = f["color"], &nd = f["normal_depth"], &z = f["zoom"];
+    EXPECT_FALSE(has_nan(nd));
+    EXPECT_FALSE(has_nan(z));
+    size_t n = 0;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            float w = nd.at(x, y, 3);
+            ASSERT_GE(w, 0.0f);
+            ASSERT_LE(w, 1.0f);
+            ASSERT_TRUE(std::isfinite(z.at(x, y, 0)));
+            if (!covered(c, x, y)) continue;
+            ++n;
+            glm::vec3 v(nd.at(x, y, 0), nd.at(x, y, 1), nd.at(x, y, 2));
+            ASSERT_NEAR(glm::length(v), 1.0f, 0.01f) << x << "," << y;
+            ASSERT_GT(v.z, -0.2f) << "tube normals face the viewer";
+            ASSERT_LT(w, 1.0f);
+            ASSERT_GT(z.at(x, y, 0), 0.0f);
+        }
+    EXPECT_GT(n, 500u);
+}
+
+TEST(lines, ZoomIsPixelsPerWorldUnitAtALineCentre) {
+    // A thin isolated line: the tube offset (<= r) stays well under 1 % of the distance.
+    Frame f = render_frame("gbuffer_only.json", 5.0, {"window=0", "line_width=0.6", "halo=0"}, kGbuf);
+    const Camera& cam = f.camera;
+    const glm::vec3 p(20.0f, float(12 + 0.5 * std::sin(2.5)), 0.0f);  // isolated line at t = 5
+    glm::vec4 eye = cam.view * glm::vec4(p, 1.0f);
+    glm::vec4 clip = cam.proj * eye;
+    int px = int(std::floor((clip.x / clip.w * 0.5f + 0.5f) * float(kSize.x)));
+    int py = kSize.y - 1 - int(std::floor((clip.y / clip.w * 0.5f + 0.5f) * float(kSize.y)));
+    // The pixel nearest the line's centre around the projection: the normal faces the viewer most.
+    const Image &c = f["color"], &nd = f["normal_depth"], &z = f["zoom"];
+    int bx = -1, by = -1;
+    float best = -2.0f;
+    for (int y = py - 1; y <= py + 1; ++y)
+        for (int x = px - 1; x <= px + 1; ++x)
+            if (x >= 0 && y >= 0 && x < kSize.x && y < kSize.y && covered(c, x, y) && nd.at(x, y, 2) > best) {
+                best = nd.at(x, y, 2);
+                bx = x;
+                by = y;
+            }
+    ASSERT_GE(bx, 0) << "isolated line not found near pixel " << px << "," << py;
+    double expected = 0.5 * kSize.y * cam.proj[1][1] / -eye.z;
+    EXPECT_NEAR(z.at(bx, by, 0) / expected, 1.0, 0.01) << "zoom " << z.at(bx, by, 0) << " expected " << expected;
+}
+
+TEST(lines, TimeWindowDrawsFewerSegmentsAndMoves) {
+    Frame whole = gbuffer(5.0, {"window=0"});
+    Frame w3 = gbuffer(3.0, {"window=1"});
+    Frame w6 = gbuffer(6.0, {"window=1"});
+    EXPECT_EQ(whole.stats.at("segments"), 41 * 100);
+    EXPECT_EQ(whole.stats.at("lines"), 41);
+    EXPECT_GT(w3.stats.at("segments"), 0);
+    EXPECT_LT(w3.stats.at("segments"), whole.stats.at("segments") / 4);
+    size_t n3 = coverage(w3["color"]), n6 = coverage(w6["color"]), both = 0;
+    for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) both += covered(w3["color"], x, y) && covered(w6["color"], x, y);
+    EXPECT_GT(n3, 50u);
+    EXPECT_GT(n6, 50u);
+    EXPECT_LT(coverage(w3["color"]), coverage(whole["color"]));
+    EXPECT_LT(both, n3 / 10) << "pathlets at t=3 and t=6 should cover different pixels";
+}
+
+TEST(lines, WindowClipsSmoothlyInsideASegment) {
+    // The isolated line runs straight up the image at 4 mm/s; data points are 0.4 mm apart.
+    // Clipped in time, its pathlet spans exactly [4(t-1), 4t] at any t, not whole segments.
+    const glm::ivec2 size{480, 360};
+    for (double t : {5.0, 5.03, 5.06}) {
+        Frame f = render_frame("gbuffer_only.json", t, {"window=1", "line_width=1.2", "gbuffer.write_line_id=true"},
+                               {"gbuffer.line_id"}, test_scene(), size);
+        const Image& id = f["gbuffer.line_id"];
+        int top = size.y, bottom = -1;
+        for (int y = 0; y < size.y; ++y)
+            for (int x = 0; x < size.x; ++x)
+                if (id.at(x, y, 0) == 40.0f) {
+                    top = std::min(top, y);
+                    bottom = std::max(bottom, y);
+                }
+        auto row_of = [&](double tp) {  // image row (top first, continuous) of the line at time tp
+            glm::vec4 c = f.camera.proj * f.camera.view * glm::vec4(4 * tp, 12 + 0.5 * std::sin(0.5 * tp), 0, 1);
+            return double(size.y) * (1.0 - (c.y / c.w * 0.5 + 0.5));
+        };
+        // Head (larger x) is up: the top covered row holds the head, the bottom one the tail.
+        EXPECT_NEAR(top + 0.5, row_of(t), 1.5) << "head at t=" << t;
+        EXPECT_NEAR(bottom + 0.5, row_of(t - 1.0), 1.5) << "tail at t=" << t;
+    }
+}
+
+TEST(lines, Deterministic) {
+    Frame a = gbuffer(5.0), b = gbuffer(5.0);
+    for (const auto& n : kGbuf) EXPECT_EQ(a[n].pixels, b[n].pixels) << n;
+    Frame ia = render_frame("isl.json", 5.0, {}, {"final"}), ib = render_frame("isl.json", 5.0, {}, {"final"});
+    EXPECT_EQ(ia["final"].pixels, ib["final"].pixels);
+}
+
+TEST(lines, HalosDarkenRimsAndArePushedBack) {
+    std::vector<std::string> common{"window=0", "line_width=2", "gbuffer.halo_depth=0.05"};
+    auto with = [&](const char* halo) {
+        auto s = common;
+        s.push_back(halo);
+        return gbuffer(5.0, s);
+    };
+    Frame on = with("halo=0.4"), off = with("halo=0");
+    const Image &con = on["color"], &coff = off["color"];
+    size_t changed = 0, pushed = 0;
+    for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) {
+            // Same quads either way: the halo lives inside the width.
+            ASSERT_EQ(covered(con, x, y), covered(coff, x, y)) << x << "," << y;
+            if (!covered(con, x, y)) continue;
+            float lum_on = con.at(x, y, 0) + con.at(x, y, 1) + con.at(x, y, 2);
+            float lum_off = coff.at(x, y, 0) + coff.at(x, y, 1) + coff.at(x, y, 2);
+            float d_on = on["normal_depth"].at(x, y, 3), d_off = off["normal_depth"].at(x, y, 3);
+            EXPECT_GE(d_on, d_off - 1e-3f) << "a halo never pulls depth forward";
+            if (lum_on < lum_off - 0.05f) {
+                ++changed;
+                pushed += d_on > d_off + 1e-3f;
+            }
+        }
+    EXPECT_GT(changed, 100u);
+    EXPECT_GT(pushed, changed / 2) << "darkened rim pixels lie behind the halo-free ones";
+}
+
+TEST(lines, LineIdOutput) {
+    Frame f = render_frame("gbuffer_only.json", 5.0, {"line_width=1.2", "gbuffer.write_line_id=true"},
+                           {"color", "gbuffer.line_id"});
+    const Image &c = f["color"], &id = f["gbuffer.line_id"];
+    bool saw_isolated = false;
+    for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) {
+            float v = id.at(x, y, 0);
+            if (!covered(c, x, y)) {
+                ASSERT_EQ(v, -1.0f);
+            } else {
+                ASSERT_GE(v, 0.0f);
+                ASSERT_LE(v, 40.0f);
+                saw_isolated |= v == 40.0f;
+            }
+        }
+    EXPECT_TRUE(saw_isolated);
+}
+
+TEST(lines, EmptySceneJustClears) {
+    Scene empty;
+    Frame f = render_frame("gbuffer_only.json", 0.0, {}, kGbuf, empty);
+    EXPECT_EQ(coverage(f["color"]), 0u);
+    EXPECT_EQ(f.stats.at("segments"), 0);
+    EXPECT_EQ(f["normal_depth"].at(3, 3, 3), 1.0f);
+}
+
+namespace {
+// Copies `file` from `from` into `dir` with line `needle`'s line replaced by `broken`;
+// returns that line's number.
+int copy_broken(const fs::path& from, const fs::path& dir, const std::string& needle, const std::string& broken) {
+    std::ifstream in(from);
+    std::ostringstream out;
+    std::string line;
+    int n = 0, hit = 0;
+    while (std::getline(in, line)) {
+        ++n;
+        if (!hit && line.find(needle) != std::string::npos) {
+            hit = n;
+            line = broken;
+        }
+        out << line << "\n";
+    }
+    std::ofstream(dir / from.filename()) << out.str();
+    return hit;
+}
+
+struct ShaderPathGuard {
+    explicit ShaderPathGuard(const std::string& dir) { setenv("PATHLET_SHADER_PATH", dir.c_str(), 1); }
+    ~ShaderPathGuard() { unsetenv("PATHLET_SHADER_PATH"); }
+};
+
+std::string render_error(const std::string& graph) {
+    try {
+        render_frame(graph, 5.0, {}, {});
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(lines, BrokenShaderNamesFileAndLine) {
+    fs::path dir = fs::temp_directory_path() / ("pathlet_lines_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path src = PATHLET_SOURCE_DIR;
+    {
+        int line = copy_broken(src / "passes/gbuffer/gbuffer.frag", dir, "LineFrag f = line_fragment();",
+                               "    LineFrag f = line_fragment() +;");
+        ASSERT_GT(line, 0);
+        ShaderPathGuard guard(dir.string());
+        std::string msg = render_error("gbuffer_only.json");
+        EXPECT_NE(msg.find("GLSL compile error"), std::string::npos) << msg;
+        EXPECT_NE(msg.find((dir / "gbuffer.frag").string() + ":" + std::to_string(line) + ":"), std::string::npos) << msg;
+        fs::remove(dir / "gbuffer.frag");
+    }
+    {
+        // A shared include: the message names the included file, not the stage file.
+        int line = copy_broken(src / "shaders/line_common.glsl", dir, "float c = sqrt(", "    float c = sqrt(;");
+        ASSERT_GT(line, 0);
+        ShaderPathGuard guard(dir.string());
+        std::string msg = render_error("isl.json");
+        EXPECT_NE(msg.find((dir / "line_common.glsl").string() + ":" + std::to_string(line) + ":"), std::string::npos)
+            << msg;
+    }
+    fs::remove_all(dir);
+}

@@ -1,0 +1,83 @@
+// The synthetic aortic-arch phantom: sizes, bounds, time span, determinism, cache.
+#include "phantom/phantom.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+using namespace pathlet;
+
+namespace {
+
+const Scene& small_phantom() {
+    static const Scene s = phantom::make_phantom(phantom::phantom_preset("small"));
+    return s;
+}
+
+}  // namespace
+
+TEST(Phantom, SmallPresetHasAFewHundredLinesInsideTheArch) {
+    const Scene& s = small_phantom();
+    EXPECT_GE(s.lines.line_count(), 150u);
+    EXPECT_LE(s.lines.line_count(), 1000u);
+    EXPECT_EQ(s.lines.time.size(), s.lines.point_count());
+    EXPECT_EQ(s.lines.velocity.size(), s.lines.point_count());
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    float tmin = 1e9f, tmax = -1e9f;
+    for (size_t i = 0; i < s.lines.point_count(); ++i) {
+        lo = glm::min(lo, s.lines.position[i]), hi = glm::max(hi, s.lines.position[i]);
+        tmin = std::min(tmin, s.lines.time[i]), tmax = std::max(tmax, s.lines.time[i]);
+    }
+    // Root at the origin, arch up to z ~ 80 mm, descending aorta down to z ~ -100 mm.
+    EXPECT_GT(lo.z, -115.0f);
+    EXPECT_LT(lo.z, -80.0f);
+    EXPECT_GT(hi.z, 60.0f);
+    EXPECT_LT(hi.z, 95.0f);
+    EXPECT_GE(tmin, 0.0f);
+    EXPECT_LE(tmax, 4.0f);
+    EXPECT_GT(tmax - tmin, 3.0f);  // releases spread over the whole window
+    for (const auto& l : s.lines.lines) {
+        ASSERT_GE(l.count, 2u);
+        for (uint32_t i = l.first + 1; i < l.first + l.count; ++i) ASSERT_GE(s.lines.time[i], s.lines.time[i - 1]);
+    }
+    ASSERT_TRUE(s.mesh.has_value());
+    EXPECT_GT(s.mesh->index.size() / 3, 2000u);
+    EXPECT_EQ(s.mesh->normal.size(), s.mesh->position.size());
+}
+
+TEST(Phantom, SmallPresetIsDeterministic) {
+    auto o = phantom::phantom_preset("small");
+    o.trace.threads = 1;
+    const Scene again = phantom::make_phantom(o);
+    EXPECT_EQ(again.lines.position, small_phantom().lines.position);
+    EXPECT_EQ(again.lines.time, small_phantom().lines.time);
+    EXPECT_EQ(again.mesh->index, small_phantom().mesh->index);
+}
+
+TEST(Phantom, FieldHasParabolicFlowAndAMask) {
+    const auto f = phantom::make_phantom_field(phantom::phantom_preset("small"));
+    EXPECT_GT(f.vessel_voxels(), 1000u);
+    // The root cross-section: fastest in the middle, ~2x the 150 mm/s mean.
+    const glm::vec3 v = f.frames[0][f.grid.index(f.grid.nearest({0.0f, 0.0f, 20.0f}))];
+    EXPECT_NEAR(v.z, 300.0f, 30.0f);
+    EXPECT_THROW(phantom::phantom_preset("huge"), std::invalid_argument);
+}
+
+TEST(Phantom, CachePathAndReuse) {
+    const auto dir = std::filesystem::path(PATHLET_TEST_BINARY_DIR) / "phantom-cache";
+    std::filesystem::remove_all(dir);
+    setenv("XDG_CACHE_HOME", dir.c_str(), 1);
+    const std::string path = phantom::phantom_cache_path("small");
+    EXPECT_EQ(path, (dir / "pathlet" / "phantom-small-v1.pathlet").string());
+    const Scene made = phantom::load_or_make_phantom("small");
+    EXPECT_TRUE(std::filesystem::exists(path));
+    EXPECT_TRUE(std::filesystem::exists(dir / "pathlet" / "phantom-small-v1.glb"));
+    const Scene loaded = phantom::load_or_make_phantom("small");
+    EXPECT_EQ(loaded.source, path);  // came from the cache
+    EXPECT_EQ(loaded.lines.position, made.lines.position);
+    EXPECT_EQ(loaded.lines.lines.size(), made.lines.lines.size());
+    ASSERT_TRUE(loaded.mesh.has_value());
+    EXPECT_EQ(loaded.mesh->index.size(), made.mesh->index.size());
+    unsetenv("XDG_CACHE_HOME");
+}
