@@ -140,8 +140,10 @@ std::vector<std::string> Executor::shader_dirs_for(const PassTypeInfo& type) con
     return dirs;
 }
 
-Executor::Physical Executor::make_physical(const PoolSlot& s, const std::string& label) {
+Executor::Physical Executor::make_physical(const PoolSlot& s, const std::string& full_label) {
     Physical p;
+    // GL_MAX_LABEL_LENGTH is 256 on Mesa; long pooled labels ("a+b+c...") are cut.
+    std::string label = full_label.size() > 200 ? full_label.substr(0, 197) + "..." : full_label;
     if (s.kind == PinKind::Texture) {
         const FormatInfo* fi = find_format(s.internal_format);
         glCreateTextures(GL_TEXTURE_2D, 1, &p.tex.id);
@@ -267,31 +269,36 @@ void Executor::setup() {
 
 void Executor::run_frame(const FrameInfo& f) {
     frame_ = f;
+    // Debug groups cost a message round trip per pass on Mesa; only with PATHLET_GL_DEBUG.
+    static const bool groups = std::getenv("PATHLET_GL_DEBUG") != nullptr;
     if (profiler_) profiler_->begin_frame(f.index);
     for (size_t i = 0; i < passes_.size(); ++i) {
         const CompiledPass& cp = cg_.passes[i];
         gl_.set_scope(cp.name);
-        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, GLuint(i), -1, cp.name.c_str());
+        if (groups) glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, GLuint(i), -1, cp.name.c_str());
         if (profiler_) profiler_->begin_pass(cp.name);
         try {
             PassContext ctx(contexts_[i].get());
             passes_[i]->execute(ctx);
         } catch (const std::exception& e) {
-            glPopDebugGroup();
+            if (groups) glPopDebugGroup();
             gl_.set_scope("");
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in frame " +
                             std::to_string(f.index) + ": " + e.what());
         } catch (...) {
-            glPopDebugGroup();
+            if (groups) glPopDebugGroup();
             gl_.set_scope("");
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") threw a non-standard exception");
         }
         if (profiler_) profiler_->end_pass();
-        glPopDebugGroup();
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glUseProgram(0);
-        check_gl(cp.name, "execute");
+        if (groups) glPopDebugGroup();
+        // The debug callback flags errors as they happen, so this check costs nothing when
+        // all is well; glGetError is polled once per frame below.
+        if (gl_.has_errors()) check_gl(cp.name, "execute");
     }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    check_gl(passes_.empty() ? "(engine)" : cg_.passes.back().name, "execute");
     gl_.set_scope("");
     if (profiler_) profiler_->end_frame();
     // History: what was written this frame becomes next frame's @prev.

@@ -156,6 +156,7 @@ void GlContext::debug_callback(GLenum, GLenum type, GLuint, GLenum severity, GLs
     std::string where = self->scope_.empty() ? "" : "[" + self->scope_ + "] ";
     if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
         self->errors_.push_back(where + msg);
+        self->has_errors_ = true;
     } else if (severity == GL_DEBUG_SEVERITY_MEDIUM && std::getenv("PATHLET_GL_DEBUG")) {
         std::fprintf(stderr, "GL warning: %s%s\n", where.c_str(), msg.c_str());
     }
@@ -194,6 +195,7 @@ std::vector<std::string> GlContext::take_errors() {
     std::lock_guard<std::mutex> lock(mu_);
     std::vector<std::string> out;
     out.swap(errors_);
+    has_errors_ = false;
     // Errors that reached no callback (should not happen with a debug context) still count.
     for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
         char buf[64];
@@ -205,7 +207,7 @@ std::vector<std::string> GlContext::take_errors() {
 
 void GlContext::set_scope(const std::string& scope) {
     std::lock_guard<std::mutex> lock(mu_);
-    scope_ = scope;
+    scope_.assign(scope);  // reuses capacity: called per pass per frame
 }
 
 }  // namespace pathlet

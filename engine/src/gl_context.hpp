@@ -4,6 +4,7 @@
 
 #include <pathlet/gl.hpp>
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -36,6 +37,8 @@ public:
 
     // KHR_debug messages of type ERROR (or severity HIGH) since the last call.
     std::vector<std::string> take_errors();
+    // True when the debug callback has recorded an error since the last take_errors().
+    bool has_errors() const { return has_errors_.load(std::memory_order_relaxed); }
     // Current debug group label (the executor sets the pass name), prefixed to messages.
     void set_scope(const std::string& scope);
 
@@ -49,6 +52,7 @@ private:
     std::string scope_;
     std::mutex mu_;
     std::vector<std::string> errors_;
+    std::atomic<bool> has_errors_{false};
 };
 
 }  // namespace pathlet

@@ -23,17 +23,23 @@ public:
         glDisable(GL_BLEND);
         prog_->use();
 
-        ctx.bind_framebuffer({"pyramid"}, "", 0);
-        glBindTextureUnit(0, ctx.texture("normal_depth").id);
-        prog_->set("u_mode", 0);
-        ctx.draw_fullscreen();
-
-        glBindTextureUnit(0, pyr.id);
+        const GLuint input = ctx.texture("normal_depth").id;
+        if (p.b("copy_level0")) {
+            ctx.bind_framebuffer({"pyramid"}, "", 0);
+            glBindTextureUnit(0, input);
+            prog_->set("u_mode", 0);
+            ctx.draw_fullscreen();
+        }
         prog_->set("u_mode", mode);
         for (int level = 1; level < levels; ++level) {
-            // Only level-1 is visible to the sampler while level is the render target.
-            glTextureParameteri(pyr.id, GL_TEXTURE_BASE_LEVEL, level - 1);
-            glTextureParameteri(pyr.id, GL_TEXTURE_MAX_LEVEL, level - 1);
+            if (level == 1) {
+                glBindTextureUnit(0, input);  // same as level 0; works without the copy
+            } else {
+                // Only level-1 is visible to the sampler while level is the render target.
+                glBindTextureUnit(0, pyr.id);
+                glTextureParameteri(pyr.id, GL_TEXTURE_BASE_LEVEL, level - 1);
+                glTextureParameteri(pyr.id, GL_TEXTURE_MAX_LEVEL, level - 1);
+            }
             ctx.bind_framebuffer({"pyramid"}, "", level);
             ctx.draw_fullscreen();
         }
@@ -57,6 +63,9 @@ pathlet::PassTypeInfo gauss_pyramid_type() {
                     "normals; box: plain 2x2 average like glGenerateMipmap (OpenWalnut), background included")
         .param_int("levels", 4, 1, 16,
                    "levels written, level 0 included (the rest stay untouched); keep >= lineao's radii")
+        .param_bool("copy_level0", true,
+                    "write level 0 (a copy of the input); lineao reads level 0 from normal_depth itself, so "
+                    "graphs feeding only lineao may turn this off and save one full-screen rgba16f write")
         .input_texture("normal_depth", "rgba16f", "view-space normal (xyz) and normalised linear depth (w)")
         .output_texture("pyramid", "rgba16f", "the pyramid; mip l = level l", 0 /* full chain */)
         .make<GaussPyramid>();

@@ -134,7 +134,7 @@ TEST(Pool, PropertyRandomDagsNeverShareOverlappingLifetimes) {
         bool first = true;
         for (int k = 0; k < n; ++k) {
             std::ostringstream p;
-            const std::string name = "p" + std::to_string(k);
+            const std::string name = std::string("p").append(std::to_string(k));  // not "p" + ...: GCC 12 -Wrestrict false positive
             const bool declared = rng() % 4 == 0;
             const bool history = declared && rng() % 5 == 0;
             p << "{\"name\": \"" << name << "\", \"type\": \"" << (declared ? "anyout" : "mix") << "\"";
@@ -148,7 +148,7 @@ TEST(Pool, PropertyRandomDagsNeverShareOverlappingLifetimes) {
                     }
                 p << "}";
             } else {
-                const std::string r = "r" + std::to_string(k);
+                const std::string r = std::string("r").append(std::to_string(k));
                 p << ", \"outputs\": {\"dst\": \"" << r << "\"}";
                 res << (first ? "" : ",") << "\"" << r << "\": {\"format\": \"" << formats[rng() % 3]
                     << "\", \"size\": {\"scale\": " << scales[rng() % 2] << "}" << (history ? ", \"history\": true" : "") << "}";

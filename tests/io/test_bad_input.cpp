@@ -14,6 +14,8 @@
 #include <new>
 #include <regex>
 
+// The replacement operators below pair malloc with free; GCC's inliner flags the pairing.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 static std::atomic<size_t> g_largest_alloc{0};
 #if !defined(__SANITIZE_ADDRESS__)  // ASan owns operator new; its allocator reports huge requests itself
 void* operator new(size_t n) {

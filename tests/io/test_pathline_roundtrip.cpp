@@ -13,6 +13,8 @@ namespace {
 
 struct Case { PathlineFormat fmt; const char* ext; const char* format_prefix; };
 
+void PrintTo(const Case& c, std::ostream* os) { *os << c.format_prefix; }
+
 std::string case_name(const ::testing::TestParamInfo<Case>& info) {
     static const char* names[] = {"VtkAscii", "VtkBinary", "VtpAscii", "VtpBinary", "VtpAppendedRaw",
                                   "VtpAppendedBase64", "VtpZlib", "Native"};

@@ -1,6 +1,7 @@
-// Suite `lines` (lower case so `ctest -R lines` selects it). The line passes on real GL (llvmpipe): goldens of graphs/isl.json and graphs/gbuffer_only.json
-// at 160x120, and the G-buffer contract with lineao (background values, unit normals,
-// linear depth in [0,1], zoom), the time window, halos, determinism and shader errors.
+// The line passes on real GL (llvmpipe): goldens of graphs/isl.json and graphs/gbuffer_only.json
+// at 160x120, and the G-buffer contract with lineao (background values, unit normals, linear
+// depth in [0,1], zoom), the time window, halos, determinism and shader errors. The suite is
+// `lines` (lower case) so that `ctest -R lines` selects it.
 #include "camera.hpp"
 #include "executor.hpp"
 #include "golden.hpp"
