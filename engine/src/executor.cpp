@@ -106,6 +106,19 @@ void PassContext::draw_fullscreen() {
     glBindVertexArray(0);
 }
 
+void PassContext::draw_fullscreen_on_geometry(ShaderProgram& prog) {
+    prog.use();
+    prog.set("u_fullscreen_z", 1.0f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // 1.0 > stored depth: geometry only
+    glDepthMask(GL_FALSE);    // the depth texture stays read-only
+    draw_fullscreen();
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    prog.set("u_fullscreen_z", 0.0f);
+}
+
 // ---- Executor -----------------------------------------------------------------------------
 
 Executor::Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene, Profiler* profiler)

@@ -40,8 +40,28 @@ void GpuScene::upload(const Scene& scene) {
     bounds_ = scene.bounds();
     tmin_ = pl.time_min();
     tmax_ = pl.time_max();
-    smin_ = pl.speed_min();
-    smax_ = pl.speed_max();
+    // Colour range: 1st..99th percentile of the point speeds, so a few outliers (a particle
+    // stuck near the wall, a spike in measured data) do not squash every line into one hue.
+    {
+        std::vector<float> sp;
+        sp.reserve(pl.velocity.size());
+        for (const auto& v : pl.velocity) {
+            float s = glm::length(v);
+            if (std::isfinite(s)) sp.push_back(s);
+        }
+        if (sp.empty()) {
+            smin_ = smax_ = 0.0f;
+        } else {
+            auto pick = [&](double q) {
+                size_t k = size_t(q * double(sp.size() - 1));
+                std::nth_element(sp.begin(), sp.begin() + long(k), sp.end());
+                return sp[k];
+            };
+            smin_ = pick(0.01);
+            smax_ = pick(0.99);
+            if (!(smax_ > smin_)) smin_ = pl.speed_min(), smax_ = pl.speed_max();
+        }
+    }
 
     // Interleave once; the tangent is the central difference (one-sided at the ends), so the
     // geometry shader gets smooth joins without adjacency primitives.

@@ -131,8 +131,28 @@ Image read_image(const std::string& path) {
     return img;
 }
 
+static Image read_texture_as(GLuint tex, int w, int h, int mip, int channels, GLenum format);
+
 Image read_texture(GLuint tex, int w, int h, int mip, int channels) {
-    const GLenum format = gl_format_for(channels);
+    // Depth textures can only be read as GL_DEPTH_COMPONENT: read one channel, then spread
+    // it over the requested channels (grey, alpha 1) so captures of depth just work.
+    GLint internal = 0;
+    glGetTextureLevelParameteriv(tex, mip, GL_TEXTURE_INTERNAL_FORMAT, &internal);
+    if (internal == GL_DEPTH_COMPONENT16 || internal == GL_DEPTH_COMPONENT24 || internal == GL_DEPTH_COMPONENT32F ||
+        internal == GL_DEPTH_COMPONENT32) {
+        Image d = read_texture_as(tex, w, h, mip, 1, GL_DEPTH_COMPONENT);
+        if (channels == 1) return d;
+        Image out;
+        out.width = w, out.height = h, out.channels = channels, out.is_float = true;
+        out.pixels.resize(size_t(w) * size_t(h) * size_t(channels));
+        for (size_t i = 0; i < size_t(w) * size_t(h); ++i)
+            for (int c = 0; c < channels; ++c) out.pixels[i * size_t(channels) + size_t(c)] = c == 3 ? 1.0f : d.pixels[i];
+        return out;
+    }
+    return read_texture_as(tex, w, h, mip, channels, gl_format_for(channels));
+}
+
+static Image read_texture_as(GLuint tex, int w, int h, int mip, int channels, GLenum format) {
     GLint tw = 0, th = 0;
     glGetTextureLevelParameteriv(tex, mip, GL_TEXTURE_WIDTH, &tw);
     glGetTextureLevelParameteriv(tex, mip, GL_TEXTURE_HEIGHT, &th);

@@ -5,6 +5,7 @@
 #include <pathlet/shader.hpp>
 
 #include <algorithm>
+#include <string>
 
 namespace {
 
@@ -21,17 +22,45 @@ public:
         prog_->set("u_inv_sigma_d", 1.0f / std::max(p.f("sigma_depth"), 1e-6f));
         prog_->set("u_normal_power", p.f("normal_power"));
         prog_->set("u_enabled", p.b("enabled") ? 1 : 0);
-        glBindTextureUnit(0, ctx.texture("ao").id);
         glBindTextureUnit(1, ctx.texture("normal_depth").id);
         glBindTextureUnit(2, ctx.texture("color").id);
-        glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
-        ctx.bind_framebuffer({"final"});
-        ctx.draw_fullscreen();
+        const bool separable = p.b("separable") && p.b("enabled");
+        if (separable) {
+            // Horizontal: ao -> tmp (filtered ao alone). Background texels of tmp are never read.
+            glBindTextureUnit(0, ctx.texture("ao").id);
+            prog_->set("u_step", glm::ivec2(1, 0));
+            prog_->set("u_multiply", 0);
+            draw(ctx, "tmp", false);
+            glBindTextureUnit(0, ctx.texture("tmp").id);
+            prog_->set("u_step", glm::ivec2(0, 1));
+        } else {
+            glBindTextureUnit(0, ctx.texture("ao").id);
+            prog_->set("u_step", glm::ivec2(0, 0));
+        }
+        prog_->set("u_multiply", 1);
+        draw(ctx, "final", true);
         for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
     }
 
 private:
+    // Runs the filter into `out`, only on covered pixels when the G-buffer depth is
+    // connected. For `final`, the background is the colour, copied first.
+    void draw(pathlet::PassContext& ctx, const std::string& out, bool copy_background) {
+        pathlet::Texture color = ctx.texture("color"), target = ctx.texture(out);
+        bool skip = ctx.connected("depth") && (!copy_background || color.internal_format == target.internal_format);
+        if (skip) {
+            if (copy_background)
+                glCopyImageSubData(color.id, GL_TEXTURE_2D, 0, 0, 0, 0, target.id, GL_TEXTURE_2D, 0, 0, 0, 0,
+                                   target.width, target.height, 1);
+            ctx.bind_framebuffer({out}, "depth");
+            ctx.draw_fullscreen_on_geometry(*prog_);
+        } else {
+            glDisable(GL_DEPTH_TEST);
+            ctx.bind_framebuffer({out});
+            ctx.draw_fullscreen();
+        }
+    }
     pathlet::ShaderProgram* prog_ = nullptr;
 };
 
@@ -45,9 +74,13 @@ pathlet::PassTypeInfo bilateral_type() {
                      "depth Gaussian sigma in normalised linear depth (lines further apart do not mix)")
         .param_float("normal_power", 1.0, 0.0, 64.0, "weight max(n.n',0)^power; 0 ignores normals")
         .param_bool("enabled", true, "false: plain multiply, to see LineAO's raw noise")
+        .param_bool("separable", true,
+                    "filter rows then columns (2(2r+1) taps, ~4x cheaper); false: the full 2-D kernel")
         .input_texture("ao", "r16f", "LineAO term (1 = unoccluded)")
         .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
         .input_texture("color", "any", "line colour (rgba8 from gbuffer); alpha 0 = background")
+        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped", true)
+        .output_texture("tmp", "r16f", "separable mode: the horizontally filtered AO (an engine-pooled transient)")
         .output_texture("final", "rgba8", "colour x smoothed AO")
         .make<Bilateral>();
 }

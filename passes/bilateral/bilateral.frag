@@ -1,6 +1,7 @@
 #version 450 core
 // Depth- and normal-aware (cross-bilateral) smoothing of the AO term, multiplied into the
-// colour. Background pixels (colour alpha 0) are copied unchanged. Uniform loop bounds:
+// colour. Background pixels (colour alpha 0) are copied unchanged. Separable mode runs it
+// twice (horizontal into `tmp`, vertical with the multiply): 2(2r+1) taps instead of (2r+1)^2. Uniform loop bounds:
 // on llvmpipe they skip the fetches of background pixels instead of running them masked.
 #include "lineao_common.glsl"
 
@@ -13,6 +14,8 @@ uniform float u_inv2_sigma_s2;  // 1 / (2 sigma_spatial^2)
 uniform float u_inv_sigma_d;    // 1 / sigma_depth
 uniform float u_normal_power;
 uniform bool u_enabled;
+uniform ivec2 u_step;      // (1,0) or (0,1): one axis of the separable filter; (0,0): full 2-D
+uniform bool u_multiply;   // last pass: write colour * ao; else write the filtered ao alone
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -27,19 +30,25 @@ void main() {
         vec3 n = normalize(nd.xyz);
         ivec2 size = textureSize(u_ao, 0);
         float sum = 0.0, wsum = 0.0;
-        for (int j = -u_radius; j <= u_radius; ++j)
+        // Separable: 2r+1 taps along u_step; full: (2r+1)^2 taps.
+        int rj = u_step == ivec2(0) ? u_radius : 0;
+        ivec2 axis = u_step == ivec2(0) ? ivec2(1, 0) : u_step;
+        for (int j = -rj; j <= rj; ++j)
             for (int i = -u_radius; i <= u_radius; ++i) {
-                ivec2 q = p + ivec2(i, j);
+                ivec2 q = p + axis * i + ivec2(0, j);
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
                 vec4 o = texelFetch(u_nd, q, 0);
                 if (!nd_is_geometry(o)) continue;  // background AO (= 1) must not brighten edges
                 float dz = (o.w - nd.w) * u_inv_sigma_d;
                 float w = exp(-float(i * i + j * j) * u_inv2_sigma_s2 - dz * dz);
-                if (u_normal_power > 0.0) w *= pow(max(dot(n, normalize(o.xyz)), 0.0), u_normal_power);
+                if (u_normal_power > 0.0) {
+                    float c = max(dot(n, normalize(o.xyz)), 0.0);
+                    w *= u_normal_power == 1.0 ? c : pow(c, u_normal_power);
+                }
                 sum += w * texelFetch(u_ao, q, 0).r;
                 wsum += w;
             }
         if (wsum > 1e-6) ao = sum / wsum;  // the centre always has weight 1 unless its normal is 0
     }
-    o_color = vec4(c.rgb * ao, c.a);
+    o_color = u_multiply ? vec4(c.rgb * ao, c.a) : vec4(ao);
 }

@@ -36,8 +36,8 @@ inline PassTypeBuilder& declare_params(PassTypeBuilder& b) {
                      "than this merge, farther lines get a gap")
         .param_enum("colormap", "green_red", colormaps(),
                     "speed colour map: green_red (study: green slow, yellow, red fast), viridis, coolwarm, grey")
-        .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's minimum")
-        .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's maximum")
+        .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile")
+        .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's 99th percentile")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour of pixels without lines");
 }
 

@@ -103,10 +103,18 @@ public:
             glBindTextureUnit(1, ctx.texture("normal_depth").id);  // never read; keeps unit 1 valid
             prog_->set("u_max_lod", 0);
         }
-        glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
-        ctx.bind_framebuffer({"ao"});
-        ctx.draw_fullscreen();
+        if (ctx.connected("depth")) {
+            // Background stays 1 (cleared); only covered pixels run the shader.
+            const float one = 1.0f;
+            glClearTexImage(ctx.texture("ao").id, 0, GL_RED, GL_FLOAT, &one);
+            ctx.bind_framebuffer({"ao"}, "depth");
+            ctx.draw_fullscreen_on_geometry(*prog_);
+        } else {
+            glDisable(GL_DEPTH_TEST);
+            ctx.bind_framebuffer({"ao"});
+            ctx.draw_fullscreen();
+        }
         for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
         ctx.stat("samples per pixel", double(L.kernel.size()));
     }
@@ -140,6 +148,7 @@ pathlet::PassTypeInfo lineao_type() {
         .input_texture("pyramid", "rgba16f", "gauss_pyramid output; mip l is read by level l", true)
         .input_texture("zoom", "r32f", "pixels per world unit at the fragment")
         .input_texture("color", "any", "line colour (not used by the AO term; accepted for graph symmetry)", true)
+        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped", true)
         .output_texture("ao", "r16f", "ambient occlusion, 1 = unoccluded, background 1")
         .make<LineAO>();
 }

@@ -41,6 +41,8 @@ public:
     Bounds bounds() const { return bounds_; }
     float time_min() const { return tmin_; }
     float time_max() const { return tmax_; }
+    // Robust speed range for colour maps: the 1st and 99th percentile of the point speeds
+    // (Pathlines::speed_min/max give the true extremes).
     float speed_min() const { return smin_; }
     float speed_max() const { return smax_; }
 

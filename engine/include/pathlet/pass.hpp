@@ -183,6 +183,10 @@ public:
     void stat(const std::string& name, double value);
     // A full-screen triangle: bind a program first; vertex shader from shaders/fullscreen.vert.
     void draw_fullscreen();
+    // The same, but only where the bound framebuffer's depth attachment (a G-buffer depth)
+    // is < 1, i.e. on geometry: the early depth test skips background pixels, which on
+    // llvmpipe skips whole empty tiles. `prog` must use fullscreen.vert. Leaves depth state off.
+    void draw_fullscreen_on_geometry(ShaderProgram& prog);
 
 protected:
     PassContextImpl* impl_;
