@@ -29,6 +29,11 @@ Args& Args::example(const std::string& line, const std::string& what) {
     return *this;
 }
 
+Args& Args::short_name(char c) {
+    if (!opts_.empty()) opts_.back().short_name = c;
+    return *this;
+}
+
 const Args::Opt* Args::find(const std::string& name) const {
     for (const auto& o : opts_)
         if (o.name == name) return &o;
@@ -39,6 +44,9 @@ bool Args::parse(const std::vector<std::string>& argv) {
     size_t next_pos = 0;
     for (size_t i = 0; i < argv.size(); ++i) {
         std::string a = argv[i];
+        if (a.size() == 2 && a[0] == '-' && a[1] != '-')
+            for (const auto& o : opts_)
+                if (o.short_name == a[1]) a = "--" + o.name;
         if (a == "--help" || a == "-h") {
             std::fputs(help().c_str(), stdout);
             return false;
@@ -143,7 +151,7 @@ std::string Args::help() const {
     if (!opts_.empty()) {
         s << "\noptions:\n";
         for (const auto& o : opts_) {
-            s << "  --" << o.name;
+            s << "  " << (o.short_name ? std::string("-") + o.short_name + ", " : std::string()) << "--" << o.name;
             if (!o.is_flag) s << " " << o.value_name;
             if (o.is_multi) s << "  (repeatable)";
             s << "\n      " << o.help;

@@ -26,6 +26,8 @@ public:
     Args& multi(const std::string& name, const std::string& value_name, const std::string& help);
     Args& positional(const std::string& name, const std::string& help, bool required = true);
     Args& example(const std::string& line, const std::string& what);
+    // A one-letter alias for the option declared last: .option("output", ...).short_name('o')
+    Args& short_name(char c);
 
     // Returns false when --help was asked for (help already printed to stdout).
     bool parse(const std::vector<std::string>& argv);
@@ -42,6 +44,7 @@ private:
     struct Opt {
         std::string name, value_name, def, help;
         bool is_flag = false, is_multi = false;
+        char short_name = 0;
     };
     struct Pos {
         std::string name, help;

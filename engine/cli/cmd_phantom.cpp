@@ -4,7 +4,7 @@
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
 #include "phantom/phantom.hpp"
-#include "trace/progress_printer.hpp"
+#include "fraction_progress.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -13,7 +13,6 @@ namespace pathlet::cli {
 namespace {
 
 int run(std::vector<std::string> argv) {
-    std::replace(argv.begin(), argv.end(), std::string("-o"), std::string("--output"));  // Args has no short options
     Args a("phantom", "Generates the synthetic aortic-arch phantom: ascending aorta, arch and descending aorta\n"
                       "(radius 11-14 mm, world units mm) with a saccular aneurysm, pulsatile parabolic flow (60 bpm),\n"
                       "helical flow in the arch and a vortex in the aneurysm; traced like real data. Deterministic:\n"
@@ -22,6 +21,7 @@ int run(std::vector<std::string> argv) {
                       "Exit status: 0 ok, 1 failure writing, 2 bad usage.");
     a.option("preset", "NAME", "study", "study or small")
         .option("output", "OUT", "", "pathlines to write (.vtp, .vtk, .pathlet); required")
+        .short_name('o')
         .option("wall", "OUT.glb", "", "also write the vessel wall (.glb/.gltf/.stl/.obj)")
         .flag("no-aneurysm", "leave out the aneurysm")
         .option("threads", "N", "0", "worker threads (0: all cores; the result is the same)")
@@ -38,22 +38,17 @@ int run(std::vector<std::string> argv) {
     }
     o.aneurysm = !a.has("no-aneurysm");
     o.trace.threads = int(a.integer("threads"));
-    try {
+    {
         io::format_from_extension(out);
-        trace::ProgressPrinter progress("pathlet phantom");
+        FractionProgress progress("phantom");
         trace::TraceStats st;
         const Scene s = phantom::make_phantom(o, progress.callback(), &st);
         if (!a.get("wall").empty() && s.mesh) io::save_mesh(*s.mesh, a.get("wall"));
         io::save_pathlines(s.lines, out, io::format_from_extension(out));
-        progress.done();
+        progress.finish("done");
         std::fprintf(stderr, "pathlet phantom: %s: %zu lines, %zu points, %zu wall triangles; %.1f s\n", o.preset.c_str(),
                      s.lines.line_count(), s.lines.point_count(), s.mesh ? s.mesh->index.size() / 3 : 0, progress.seconds());
         return 0;
-    } catch (const UsageError&) {
-        throw;
-    } catch (const std::runtime_error& e) {  // DataError, or a write failure from the atomic writer
-        std::fprintf(stderr, "pathlet phantom: error: %s\n", e.what());
-        return 1;
     }
 }
 

@@ -28,7 +28,7 @@ int run(const std::vector<std::string>& argv) {
            "prints the per-pass timing table. Without arguments it renders the built-in aortic-arch\n"
            "phantom (generated on first use and cached) through the LineAO graph variant1_lineao.");
     a.positional("GRAPH", "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
-        .option("time", "T|A:B|A:B:STEP", "0:18:0.5", "animation times in seconds (frames at A, A+STEP, ... <= B)")
+        .option("time", "T|A:B|A:B:STEP", "", "animation times in seconds (frames at A, A+STEP, ... <= B); default: the data's whole time span in 0.25 s steps")
         .option("size", "WxH", "1280x720", "output size in pixels")
         .option("out", "DIR", "out", "output folder ({out} in the graph's capture patterns)")
         .multi("set", "NAME=VALUE", "override a graph variable or a pass parameter: --set lineao.strength=2")
@@ -56,7 +56,7 @@ int run(const std::vector<std::string>& argv) {
     try {
         opt.graph_path = resolve_graph_path(a.pos("GRAPH").empty() ? "variant1_lineao" : a.pos("GRAPH"));
         opt.size = parse_size(a.get("size"));
-        opt.time = parse_time_range(a.get("time"));
+        if (a.has("time")) opt.time = parse_time_range(a.get("time"));
         opt.timing = parse_timing_backend(a.get("timing"));
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
@@ -78,6 +78,7 @@ int run(const std::vector<std::string>& argv) {
     Runtime rt;
     rt.load_plugins(a.all("plugin-dir"));
     Scene scene = load_scene(a, opt.quiet);
+    if (!a.has("time")) opt.time = {scene.lines.time_min(), scene.lines.time_max(), 0.25};
     try {
         RenderResult r = render(rt, scene, opt);
         std::string title = graph_display_name(parse_graph_file(opt.graph_path)) + " — " +

@@ -5,7 +5,7 @@
 #include "io/pathline_io.hpp"
 #include "trace/field_readers.hpp"
 #include "trace/marching_cubes.hpp"
-#include "trace/progress_printer.hpp"
+#include "fraction_progress.hpp"
 #include "trace/tracer.hpp"
 
 #include <algorithm>
@@ -26,7 +26,6 @@ trace::Pulsatile parse_pulsatile(const std::string& s) {
 }
 
 int run(std::vector<std::string> argv) {
-    std::replace(argv.begin(), argv.end(), std::string("-o"), std::string("--output"));  // Args has no short options
     Args a("trace", "Traces dense pathlines through a velocity volume (study report I.b): seeds until every vessel\n"
                     "voxel is crossed by a line, RK4 backward and forward in time from each seed, drops lines that\n"
                     "are too short or run alongside accepted ones, smooths with a binomial filter, resamples.\n"
@@ -35,6 +34,7 @@ int run(std::vector<std::string> argv) {
                     "The result does not depend on --threads. Exit status: 0 ok, 1 bad data, 2 bad usage.");
     a.positional("FIELD", "velocity volume (.vtk, .vti, .h5)")
         .option("output", "OUT", "", "pathlines to write (.vtp, .vtk, .pathlet); required")
+        .short_name('o')
         .option("wall", "OUT.glb", "", "also write the vessel wall (marching cubes of the mask) as .glb/.gltf/.stl/.obj")
         .option("mask-threshold", "X", "", "vessel = scalars > X (e.g. 175 for carotid.vtk)")
         .option("velocity-scale", "S", "1", "multiply velocities (e.g. to convert units to world units/s)")
@@ -82,9 +82,9 @@ int run(std::vector<std::string> argv) {
         throw UsageError("--step, --max-dt, --duration, --line-time must be > 0; --smooth, --threads >= 0");
     const float vscale = float(a.number("velocity-scale"));
 
-    try {
+    {
         io::format_from_extension(out);  // fail on a bad extension before the work
-        trace::ProgressPrinter progress("pathlet trace");
+        FractionProgress progress("trace");
         trace::VelocityField field = trace::load_velocity_field(a.pos("FIELD"));
         if (a.has("mask-threshold")) field.mask_from_scalars(float(a.number("mask-threshold")));
         if (vscale != 1.0f)
@@ -97,17 +97,12 @@ int run(std::vector<std::string> argv) {
             io::save_mesh(trace::marching_cubes(field.grid, field.mask, 0.5f, progress.callback()), a.get("wall"));
         }
         io::save_pathlines(lines, out, io::format_from_extension(out));
-        progress.done();
+        progress.finish("done");
         std::fprintf(stderr, "pathlet trace: %zu lines, %zu points; %zu of %zu vessel voxels crossed; %zu seeds "
                              "(%zu too short, %zu too close); %.1f s\n",
                      lines.line_count(), lines.point_count(), st.covered_voxels, st.vessel_voxels, st.candidates,
                      st.rejected_short, st.rejected_close, progress.seconds());
         return 0;
-    } catch (const UsageError&) {
-        throw;
-    } catch (const std::runtime_error& e) {  // DataError, or a write failure from the atomic writer
-        std::fprintf(stderr, "pathlet trace: error: %s\n", e.what());
-        return 1;
     }
 }
 

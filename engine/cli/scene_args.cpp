@@ -3,7 +3,7 @@
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
 #include "phantom/phantom.hpp"
-#include "progress.hpp"
+#include "fraction_progress.hpp"
 
 #include <cstdio>
 
@@ -23,10 +23,8 @@ Scene load_scene(const Args& a, bool quiet) {
     if (a.get("data").empty()) {
         // Generated once (tracing takes a while on two cores), then read from the cache.
         std::string preset = a.get("phantom");
-        Progress bar("phantom '" + preset + "'", 1000, quiet);
-        scene = phantom::load_or_make_phantom(preset, [&](double f, std::string_view stage) {
-            bar.update(size_t(f * 1000.0), std::string(stage));
-        });
+        FractionProgress bar("phantom '" + preset + "'", quiet);
+        scene = phantom::load_or_make_phantom(preset, bar.callback());
         bar.finish(std::to_string(scene.lines.line_count()) + " lines");
     } else {
         io::LoadOptions o;

@@ -40,12 +40,13 @@ std::string format_duration(double s) {
     return buf;
 }
 
-Progress::Progress(std::string what, size_t total, bool quiet)
+Progress::Progress(std::string what, size_t total, bool quiet, bool counts)
     : what_(std::move(what)),
       total_(total),
       quiet_(quiet),
       tty_(::isatty(STDERR_FILENO) == 1),
       colour_(tty_ && colour_allowed()),
+      counts_(counts),
       start_(Clock::now()),
       last_print_(start_),
       step_(std::max<size_t>(1, total / 20)) {}
@@ -59,8 +60,13 @@ double Progress::elapsed_s() const { return std::chrono::duration<double>(Clock:
 std::string Progress::status(size_t done, const std::string& note) const {
     double t = elapsed_s();
     double rate = t > 0 ? double(done) / t : 0;
-    std::string s = std::to_string(done) + "/" + std::to_string(total_) + " " + what_;
-    s += "  " + printf_string("%.1f", rate) + " " + rate_unit();
+    std::string s;
+    if (counts_) {
+        s = std::to_string(done) + "/" + std::to_string(total_) + " " + what_;
+        s += "  " + printf_string("%.1f", rate) + " " + rate_unit();
+    } else {
+        s = what_ + " " + std::to_string(total_ ? done * 100 / total_ : 100) + "%";
+    }
     if (done < total_) s += "  ETA " + format_duration(rate > 0 ? double(total_ - done) / rate : -1);
     if (!note.empty()) s += "  " + note;
     return s;
@@ -98,7 +104,7 @@ void Progress::update(size_t done, const std::string& note) {
         if (!last && done < last_done_ + step_ && since < kPlainInterval) return;
         if (done == last_done_ && done != 0) return;  // nothing new to say
         size_t pct = total_ ? done * 100 / total_ : 100;
-        emit(status(done, note) + "  (" + std::to_string(pct) + "%)\n");
+        emit(status(done, note) + (counts_ ? "  (" + std::to_string(pct) + "%)" : std::string()) + "\n");
     }
     last_print_ = now;
     last_done_ = done;
@@ -109,8 +115,9 @@ void Progress::finish(const std::string& summary) {
     finished_ = true;
     if (quiet_) return;
     double t = elapsed_s();
-    std::string line = summary + " in " + format_duration(t) + " (" +
-                       printf_string("%.1f", t > 0 ? double(done_) / t : 0) + " " + rate_unit() + ")\n";
+    std::string line = summary + " in " + format_duration(t);
+    if (counts_) line += " (" + printf_string("%.1f", t > 0 ? double(done_) / t : 0) + " " + rate_unit() + ")";
+    line += "\n";
     emit((line_open_ ? "\r\033[K" : "") + line);
     line_open_ = false;
 }

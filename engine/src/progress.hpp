@@ -14,7 +14,9 @@ std::string format_duration(double seconds);
 
 class Progress {
 public:
-    Progress(std::string what, size_t total, bool quiet = false);
+    // counts = false: the work reports fractions (total is a scale), so show percent and ETA
+    // only, not "n/total" and a rate.
+    Progress(std::string what, size_t total, bool quiet = false, bool counts = true);
     ~Progress();  // ends a half-drawn terminal line if finish() was never called
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
@@ -32,7 +34,7 @@ private:
 
     std::string what_;
     size_t total_;
-    bool quiet_, tty_, colour_;
+    bool quiet_, tty_, colour_, counts_;
     Clock::time_point start_, last_print_;
     size_t last_done_ = 0, done_ = 0;
     size_t step_;

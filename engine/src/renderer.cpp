@@ -1,6 +1,7 @@
 #include "renderer.hpp"
 
 #include "executor.hpp"
+#include "formats.hpp"
 #include "image_io.hpp"
 #include "progress.hpp"
 #include "video_writer.hpp"
@@ -134,6 +135,11 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                                                   {{"out", opt.out_dir}, {"graph", gname}, {"output", out.resource},
                                                    {"size", std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y)}},
                                                   i);
+                // A pattern without an extension: EXR keeps float outputs exact, PNG for the rest.
+                if (fs::path(file).extension().empty()) {
+                    const FormatInfo* fi = find_format(rd.internal_format);
+                    file += fi && (fi->is_float || fi->depth) ? ".exr" : ".png";
+                }
                 ensure_parent_dir(file);
                 write_image(file, img);
                 res.files.push_back(file);
