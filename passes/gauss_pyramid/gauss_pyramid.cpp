@@ -5,6 +5,8 @@
 #include <pathlet/shader.hpp>
 
 #include <algorithm>
+#include <map>
+#include <utility>
 
 namespace {
 
@@ -32,24 +34,34 @@ public:
         }
         prog_->set("u_mode", mode);
         for (int level = 1; level < levels; ++level) {
-            if (level == 1) {
-                glBindTextureUnit(0, input);  // same as level 0; works without the copy
-            } else {
-                // Only level-1 is visible to the sampler while level is the render target.
-                glBindTextureUnit(0, pyr.id);
-                glTextureParameteri(pyr.id, GL_TEXTURE_BASE_LEVEL, level - 1);
-                glTextureParameteri(pyr.id, GL_TEXTURE_MAX_LEVEL, level - 1);
-            }
+            // Level 1 reads the input itself; deeper levels read a view of exactly level-1, so
+            // the level being written is never sampled and no texture parameter changes
+            // (changing BASE/MAX_LEVEL made llvmpipe wait for the previous draw: ~10 ms a level).
+            glBindTextureUnit(0, level == 1 ? input : level_view(pyr, level - 1));
             ctx.bind_framebuffer({"pyramid"}, "", level);
             ctx.draw_fullscreen();
         }
-        glTextureParameteri(pyr.id, GL_TEXTURE_BASE_LEVEL, 0);
-        glTextureParameteri(pyr.id, GL_TEXTURE_MAX_LEVEL, pyr.mips - 1);
         glBindTextureUnit(0, 0);
         ctx.stat("levels built", levels);
     }
 
+    ~GaussPyramid() override {
+        for (auto& [key, view] : views_) glDeleteTextures(1, &view);
+    }
+
 private:
+    // A one-level texture view of `tex` (immutable storage), made once and reused.
+    GLuint level_view(const pathlet::Texture& tex, int level) {
+        GLuint& v = views_[{tex.id, level}];
+        if (!v) {
+            glGenTextures(1, &v);  // views need a name that was never bound
+            glTextureView(v, GL_TEXTURE_2D, tex.id, tex.internal_format, GLuint(level), 1, 0, 1);
+            glTextureParameteri(v, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(v, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        return v;
+    }
+    std::map<std::pair<GLuint, int>, GLuint> views_;
     pathlet::ShaderProgram* prog_ = nullptr;
 };
 

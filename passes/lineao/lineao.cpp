@@ -91,6 +91,7 @@ public:
         prog_->set("u_occluder_light", p.b("occluder_light") ? 1 : 0);
         prog_->set("u_light", light);
         prog_->set("u_exponent", p.f("exponent"));
+        prog_->set("u_spec_cut", std::pow(1e-4f, 1.0f / p.f("exponent")));
         glUniform1ui(prog_->loc("u_seed"), uint32_t(p.i("seed")));
 
         glBindTextureUnit(0, ctx.texture("normal_depth").id);

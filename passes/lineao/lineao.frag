@@ -27,13 +27,7 @@ uniform bool u_occluder_light;
 uniform vec3 u_light;                   // unit, view space
 uniform float u_exponent;
 uniform uint u_seed;
-
-vec4 fetch_level(ivec2 q, int level) {
-    if (!u_use_pyramid || level == 0) return texelFetch(u_nd, q, 0);
-    int lod = min(level, u_max_lod);
-    ivec2 s = textureSize(u_pyramid, lod);
-    return texelFetch(u_pyramid, min(q >> lod, s - 1), lod);
-}
+uniform float u_spec_cut;               // below this cosine, cos^exponent < 1e-4: skip the pow
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -55,6 +49,10 @@ void main() {
     float line_ao = 0.0;
     for (int l = 0; l < u_levels; ++l) {
         float radius = u_r0 + u_growth[l] * width_px;
+        // Where level l's samples come from, decided once per level (not per sample).
+        bool from_pyramid = u_use_pyramid && l > 0;
+        int lod = from_pyramid ? min(l, u_max_lod) : 0;
+        ivec2 lod_size = from_pyramid ? textureSize(u_pyramid, lod) : size;
         float sum = 0.0;
         int used = 0;  // n_l: samples on screen and on geometry
         for (int i = 0; i < u_count[l]; ++i) {
@@ -64,7 +62,7 @@ void main() {
             float len = 0.25 + 0.75 * fract(k.w + rnd.y);
             ivec2 q = ivec2(floor(gl_FragCoord.xy + w.xy * (len * radius)));
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-            vec4 occ = fetch_level(q, l);
+            vec4 occ = from_pyramid ? texelFetch(u_pyramid, min(q >> lod, lod_size - 1), lod) : texelFetch(u_nd, q, 0);
             if (!nd_is_geometry(occ)) continue;
             ++used;
             float dd = d - occ.w;       // > 0: the sample is in front of P
@@ -75,7 +73,8 @@ void main() {
             vec3 no = normalize(occ.xyz);
             float cos_p = max(dot(w, n), 0.0);
             vec3 h = u_light + w;  // zero when w points straight away from the light
-            float spec = dot(h, h) > 1e-8 ? pow(max(dot(normalize(h), no), 0.0), u_exponent) : 0.0;
+            float hn = dot(h, h) > 1e-8 ? dot(normalize(h), no) : 0.0;
+            float spec = hn > u_spec_cut ? pow(hn, u_exponent) : 0.0;
             float diff = u_occluder_light ? max(dot(no, u_light), 0.0) : 0.0;
             float g_light = 1.0 - min(cos_p * (spec + diff), 1.0);
             sum += g_depth * g_light;
