@@ -24,9 +24,9 @@ inline PassTypeBuilder& declare_params(PassTypeBuilder& b) {
         .param_float("window", 1.0, -1.0, 1e6,
                      "pathlet length in seconds: the parts of the lines with times in [t - window, t] are drawn, "
                      "clipped smoothly inside a segment; <= 0 draws every line whole")
-        .param_float("line_width", 0.5, 1e-4, 1e4,
-                     "quad width in world units, halo included (the phantom is in mm: 0.5 mm is ~2 px at 720p, "
-                     "the study's thinner setting)")
+        .param_float("line_width", 0.0, 0.0, 1e4,
+                     "quad width in world units, halo included; 0 = auto: 0.25 % of the data's bounding-box "
+                     "diagonal (~2 px at 720p when the data fills the frame; 0.55 mm on the phantom)")
         .param_float("halo", 0.2, 0.0, 0.9,
                      "fraction of the width drawn as halo, split between both rims (study: 20 %); 0 = off")
         .param_color("halo_color", {0.0f, 0.0f, 0.0f},
@@ -65,7 +65,7 @@ inline void draw(PassContext& ctx, const ShaderProgram& prog, GpuScene::Ranges& 
     prog.set("u_proj", cam.proj);
     prog.set("u_window", glm::vec2(float(t) - window, float(t)));
     prog.set("u_windowed", windowed ? 1 : 0);
-    prog.set("u_half_width", 0.5f * p.f("line_width"));
+    prog.set("u_half_width", 0.5f * scene.line_width(p.f("line_width")));
     prog.set("u_halo", p.f("halo"));
     prog.set("u_halo_depth", p.f("halo_depth"));
     prog.set("u_halo_color", p.v3("halo_color"));

@@ -1,6 +1,7 @@
 // lineao: the LineAO term per pixel (shared/LINEAO.md). The per-level constants (sample
 // counts, radius growth, delta(l)) and the sample kernel are computed here once per frame
 // and passed as uniforms, so the shader has uniform loop bounds and no recompiles.
+#include <pathlet/gpu_scene.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
@@ -84,7 +85,7 @@ public:
         glUniform4fv(prog_->loc("u_kernel"), GLsizei(std::min<size_t>(L.kernel.size(), kMaxKernel)),
                      glm::value_ptr(L.kernel[0]));
         prog_->set("u_r0", p.f("r0"));
-        prog_->set("u_line_width", p.f("line_width"));
+        prog_->set("u_line_width", ctx.scene().line_width(p.f("line_width")));
         prog_->set("u_strength", p.f("strength"));
         prog_->set("u_delta0", p.f("delta0"));
         prog_->set("u_use_pyramid", pyramid ? 1 : 0);
@@ -131,8 +132,9 @@ pathlet::PassTypeInfo lineao_type() {
         .param_int("samples", 32, 1, 128, "s_h: samples of level 0; level l takes s_h/(l+1)")
         .param_int("radii", 3, 1, kMaxLevels, "s_r: number of radii (hemispheres / pyramid levels)")
         .param_float("r0", 2.0, 0.0, 100.0, "first sampling radius in pixels (about the line width on screen)")
-        .param_float("line_width", 0.5, 0.0, 1e6,
-                     "world units per radius step: r_l grows by zoom(P)*line_width px per level; set it to the "
+        .param_float("line_width", 0.0, 0.0, 1e6,
+                     "world units per radius step (0 = auto, as the gbuffer's): r_l grows by zoom(P)*line_width px "
+                     "per level; set it to the "
                      "gbuffer's line width so one step is one line width on screen")
         .param_enum("radius_growth", "linear", {"linear", "running_sum"},
                     "linear: r_l = r0 + l*w (paper eq. 6); running_sum: r0 + (0, 2.5, 6, 10.5, ..)*w, the authors' "

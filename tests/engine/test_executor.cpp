@@ -78,3 +78,24 @@ TEST(Executor, UnknownResourceIsAClearError) {
         EXPECT_NE(std::string(err.what()).find("no_such_thing"), std::string::npos);
     }
 }
+
+TEST(GpuSceneTest, AutoLineWidthFollowsTheDataSizeAndRangesClipToTheWindow) {
+    runtime();  // a current GL context
+    Scene scene = tiny_scene();  // x 0..4, y 0..1: diagonal sqrt(17)
+    GpuScene gpu;
+    gpu.upload(scene);
+    EXPECT_NEAR(gpu.auto_line_width(), 0.0025f * std::sqrt(17.0f), 1e-6f);
+    EXPECT_FLOAT_EQ(gpu.line_width(0.0f), gpu.auto_line_width());
+    EXPECT_FLOAT_EQ(gpu.line_width(0.7f), 0.7f);
+    // Times 0..4 per line: the window [1.5, 2.5] keeps segments 1-2 and 2-3 of both lines.
+    GpuScene::Ranges r;
+    gpu.ranges(1.5, 2.5, r);
+    ASSERT_EQ(r.first.size(), 2u);
+    EXPECT_EQ(r.first[0], 1);
+    EXPECT_EQ(r.count[0], 3);
+    EXPECT_EQ(r.segments, 4u);
+    gpu.ranges(0, 0, r);  // no window: every line whole
+    EXPECT_EQ(r.segments, 8u);
+    gpu.ranges(10, 11, r);  // after the data: nothing
+    EXPECT_TRUE(r.first.empty());
+}
