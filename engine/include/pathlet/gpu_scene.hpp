@@ -39,11 +39,11 @@ public:
     void draw_lines(const Ranges& r) const;
 
     Bounds bounds() const { return bounds_; }
-    // The line width passes use when theirs is 0 ("auto"): 0.25 % of the bounding-box
-    // diagonal, about 2 px at 720p when the data fills the frame (0.55 mm on the phantom).
+    // The line width passes use when theirs is 0 ("auto"): 0.35 % of the bounding-box
+    // diagonal, 2-3 px at 720p when the data fills the frame (0.77 mm on the phantom).
     float auto_line_width() const {
         float d = bounds_.valid() ? glm::length(bounds_.hi - bounds_.lo) : 0.0f;
-        return d > 0.0f ? 0.0025f * d : 1.0f;
+        return d > 0.0f ? 0.0035f * d : 1.0f;
     }
     float line_width(float param) const { return param > 0.0f ? param : auto_line_width(); }
     float time_min() const { return tmin_; }
