@@ -23,6 +23,7 @@ vec3 line_safe_normalize(vec3 v, vec3 fallback) {
 }
 
 // Members of the stage interfaces (a block name must match across stages; members too).
+// position and tangent are in view space.
 #define LINE_VERTEX_MEMBERS vec3 position; float time; float speed; vec3 tangent; flat int line_id;
 // pos_view: point on the flat quad; side: unit vector across it (s = +1 side);
 // s: -1..1 across the width.
@@ -36,12 +37,13 @@ layout(location = 3) in vec3 a_tangent;
 layout(location = 4) in int a_line_id;
 out LineVertex { LINE_VERTEX_MEMBERS } v_out;
 
-// World-space points straight through: all view work happens per segment in the GS.
+// View-space point and tangent, once per point (a point is shared by two segments, and
+// llvmpipe runs the GS single-threaded, so per-point work belongs here).
 void line_vertex() {
-    v_out.position = a_position;
+    v_out.position = (u_view * vec4(a_position, 1.0)).xyz;
     v_out.time = a_time;
     v_out.speed = length(a_velocity);
-    v_out.tangent = a_tangent;
+    v_out.tangent = mat3(u_view) * a_tangent;
     v_out.line_id = a_line_id;
 }
 #endif

@@ -11,9 +11,8 @@ layout(triangle_strip, max_vertices = 4) out;
 
 bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
-void emit_end(vec3 p_world, vec3 t_world, float speed) {
-    vec3 p = (u_view * vec4(p_world, 1.0)).xyz;
-    vec3 t = line_safe_normalize(mat3(u_view) * t_world, vec3(0.0, 1.0, 0.0));
+void emit_end(vec3 p, vec3 t_view, float speed) {
+    vec3 t = line_safe_normalize(t_view, vec3(0.0, 1.0, 0.0));
     vec3 to_viewer = line_safe_normalize(-p, vec3(0.0, 0.0, 1.0));
     // Across the line and facing the viewer; a line seen end-on gets any perpendicular.
     vec3 side = cross(t, to_viewer);

@@ -143,3 +143,41 @@ TEST(Cli, BadSetOverrideIsReported) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;  // did you mean
 }
+
+TEST(Cli, PhantomTraceAndInfoRoundTrip) {
+    fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_data";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::string lines = (dir / "small.vtp").string(), wall = (dir / "small.glb").string();
+    CliRun r = pathlet("phantom --preset small -o " + lines + " --wall " + wall);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(lines));
+    EXPECT_TRUE(fs::exists(wall));
+    r = pathlet("info " + lines);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("lines:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("time (1 comp)"), std::string::npos) << r.out;
+    r = pathlet("info " + wall);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("triangles"), std::string::npos) << r.out;
+    // The traced file renders, with its wall loaded.
+    r = pathlet("render isl --data " + lines + " --mesh " + wall + " --time 1 --size 32x24 --no-images --quiet");
+    EXPECT_EQ(r.code, 0) << r.err;
+}
+
+TEST(Cli, DataCommandsRejectBadInputWithExitCodes) {
+    EXPECT_EQ(pathlet("phantom --preset huge -o /tmp/x.vtp").code, 2);
+    EXPECT_EQ(pathlet("phantom --preset small").code, 2);  // no output
+    CliRun r = pathlet("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt").string());
+    EXPECT_EQ(r.code, 1);  // unknown output extension: a clear error, nothing written
+    EXPECT_NE(r.err.find("x.txt"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt"));
+    r = pathlet("trace /no/such/field.vtk -o /tmp/y.vtp");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/no/such/field.vtk"), std::string::npos) << r.err;
+    fs::path bad = fs::path(PATHLET_TEST_BINARY_DIR) / "truncated.vtk";
+    std::ofstream(bad) << "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\nPOINTS 10 float\n0 0 0 1 1";
+    r = pathlet("info " + bad.string());
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
+}
