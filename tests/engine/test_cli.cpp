@@ -181,3 +181,14 @@ TEST(Cli, DataCommandsRejectBadInputWithExitCodes) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
 }
+
+TEST(Cli, EveryShippedGraphValidates) {
+    std::string files;
+    for (const auto& e : fs::directory_iterator(src("graphs")))
+        if (e.path().extension() == ".json") files += " " + e.path().string();
+    ASSERT_FALSE(files.empty());
+    CliRun r = pathlet("validate" + files);
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const char* g : {"variant1_lineao", "isl", "lineao_debug", "gbuffer_only", "demo_blur"})
+        EXPECT_NE(r.out.find(std::string(g) + ".json: ok"), std::string::npos) << g;
+}

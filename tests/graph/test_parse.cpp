@@ -10,7 +10,7 @@ TEST(Parse, CommentsAndAllSectionsAreRead) {
     GraphFile g = parse(R"json(
     // a hand-written graph
     {
-      "$schema": "../graphs/pathlet-graph.schema.json",
+      "$schema": "../graphs/schema/pathlet-graph.schema.json",
       "version": 1, "name": "demo", "description": "all sections", /* block comment */
       "variables": {
         "radius": {"type": "float", "default": 1, "min": 0, "max": 4, "doc": "AO radius"},

@@ -93,7 +93,7 @@ TEST(Reports, PlanJsonHoldsTheSameFacts) {
 }
 
 TEST(Schema, ShippedSchemaDescribesTheFormat) {
-    std::ifstream in(std::string(PATHLET_SOURCE_DIR) + "/graphs/pathlet-graph.schema.json");
+    std::ifstream in(std::string(PATHLET_SOURCE_DIR) + "/graphs/schema/pathlet-graph.schema.json");
     ASSERT_TRUE(in.good());
     std::stringstream s;
     s << in.rdbuf();

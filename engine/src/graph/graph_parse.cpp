@@ -1,6 +1,6 @@
 // Graph file parser: JSON (with // and /* */ comments) -> GraphFile. Checks structure only
 // (keys, JSON types, names, formats, sizes); what names refer to is checked by validate_graph.
-// The schema ships as graphs/pathlet-graph.schema.json.
+// The schema ships as graphs/schema/pathlet-graph.schema.json.
 //
 // {
 //   "version": 1,                                   // optional; newer versions are refused
