@@ -176,6 +176,7 @@ std::string PassTypeInfo::describe() const {
                 s << "texture " << p.format;
                 if (p.scale != 1.0f) s << ", " << p.scale << "x output size";
                 if (p.mips != 1) s << ", " << (p.mips == 0 ? std::string("full mip chain") : std::to_string(p.mips) + " mips");
+                if (p.optional) s << ", optional: written only when connected";
             } else {
                 s << "buffer, ";
                 if (p.bytes) s << p.bytes << " bytes";
@@ -256,8 +257,9 @@ PassTypeBuilder& PassTypeBuilder::input_texture(const std::string& name, const s
     return *this;
 }
 PassTypeBuilder& PassTypeBuilder::output_texture(const std::string& name, const std::string& format,
-                                                 const std::string& doc, int mips, float scale) {
+                                                 const std::string& doc, int mips, float scale, bool optional) {
     PinDecl p;
+    p.optional = optional;
     p.name = name;
     p.dir = PinDir::Output;
     p.kind = PinKind::Texture;

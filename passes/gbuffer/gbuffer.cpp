@@ -11,7 +11,7 @@ namespace lp = pathlet::line_pass;
 class GBuffer : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        write_id_ = ctx.params().b("write_line_id");
+        write_id_ = ctx.connected("line_id");  // an optional output: written only when a graph binds it
         std::vector<std::string> defines;
         if (write_id_) defines.push_back("WRITE_LINE_ID");
         prog_ = &ctx.program({"gbuffer.vert", "line_quad.geom", "gbuffer.frag"}, defines);
@@ -55,14 +55,14 @@ pathlet::PassTypeInfo gbuffer_type() {
                                "pathlets of the time window as view-aligned tube quads with halos and a speed colour "
                                "map, written as LineAO's G-buffer (colour, normal + linear depth, zoom, depth)");
     lp::declare_params(b)
-        .param_bool("write_line_id", false, "also write each fragment's line index to the line_id output")
         .output_texture("color", "rgba8", "line colour incl. halos; background: `background` with alpha 0")
         .output_texture("normal_depth", "rgba16f",
                         "xyz: view-space unit tube normal; w: linear depth (-z_eye - near) / (far - near); "
                         "background: (0, 0, 0, 1)")
         .output_texture("zoom", "r32f", "pixels per world unit at the fragment, (H/2) P[1][1] / -z_eye; background 0")
         .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)")
-        .output_texture("line_id", "r32i", "line index per pixel, -1 on background; written only with write_line_id");
+        .output_texture("line_id", "r32i", "line index per pixel, -1 on background (bind it to get it)", 1, 1.0f,
+                        /*optional=*/true);
     return b.make<GBuffer>();
 }
 

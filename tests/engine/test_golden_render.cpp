@@ -57,3 +57,12 @@ TEST(GoldenRender, CapturePassWritesFilesAndIsNeverCulled) {
     Image saved = read_image((dir / "save_001.png").string());
     EXPECT_EQ(saved.width, 16);
 }
+
+TEST(GoldenRender, UnboundOptionalOutputGetsNoResource) {
+    // gbuffer's line_id is optional: variant 1 leaves it unbound, gbuffer_only binds it.
+    CompiledGraph v1 = compile_graph(parse_graph_file(source("graphs/variant1_lineao.json")), runtime().registry, {64, 64});
+    EXPECT_LT(v1.find_resource("gbuffer.line_id"), 0);
+    EXPECT_LT(v1.find_resource("line_id"), 0);
+    CompiledGraph gb = compile_graph(parse_graph_file(source("graphs/gbuffer_only.json")), runtime().registry, {64, 64});
+    EXPECT_GE(gb.find_resource("line_id"), 0);
+}

@@ -278,9 +278,9 @@ TEST(lines, WindowClipsSmoothlyInsideASegment) {
     // Clipped in time, its pathlet spans exactly [4(t-1), 4t] at any t, not whole segments.
     const glm::ivec2 size{480, 360};
     for (double t : {5.0, 5.03, 5.06}) {
-        Frame f = render_frame("gbuffer_only.json", t, {"window=1", "line_width=1.2", "gbuffer.write_line_id=true"},
-                               {"gbuffer.line_id"}, test_scene(), size);
-        const Image& id = f["gbuffer.line_id"];
+        Frame f = render_frame("gbuffer_only.json", t, {"window=1", "line_width=1.2"},
+                               {"line_id"}, test_scene(), size);
+        const Image& id = f["line_id"];
         int top = size.y, bottom = -1;
         for (int y = 0; y < size.y; ++y)
             for (int x = 0; x < size.x; ++x)
@@ -334,9 +334,9 @@ TEST(lines, HalosDarkenRimsAndArePushedBack) {
 }
 
 TEST(lines, LineIdOutput) {
-    Frame f = render_frame("gbuffer_only.json", 5.0, {"line_width=1.2", "gbuffer.write_line_id=true"},
-                           {"color", "gbuffer.line_id"});
-    const Image &c = f["color"], &id = f["gbuffer.line_id"];
+    Frame f = render_frame("gbuffer_only.json", 5.0, {"line_width=1.2"},
+                           {"color", "line_id"});
+    const Image &c = f["color"], &id = f["line_id"];
     bool saw_isolated = false;
     for (int y = 0; y < kSize.y; ++y)
         for (int x = 0; x < kSize.x; ++x) {

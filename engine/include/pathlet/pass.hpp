@@ -51,7 +51,8 @@ struct PinDecl {
     float scale = 1.0f;          // outputs: default size = scale x output size
     size_t bytes = 0;            // buffer outputs: fixed size, or ...
     size_t bytes_per_pixel = 0;  // ... size proportional to the output's pixel count
-    bool optional = false;       // inputs only: may stay unconnected
+    bool optional = false;       // may stay unconnected; an unconnected optional output gets no
+                                 // resource (connected() is false), a required one an implicit one
     std::string doc;
 };
 
@@ -88,7 +89,7 @@ public:
     PassTypeBuilder& input_texture(const std::string& name, const std::string& format, const std::string& doc,
                                    bool optional = false);
     PassTypeBuilder& output_texture(const std::string& name, const std::string& format, const std::string& doc,
-                                    int mips = 1, float scale = 1.0f);
+                                    int mips = 1, float scale = 1.0f, bool optional = false);
     PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, bool optional = false);
     PassTypeBuilder& output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
                                    const std::string& doc);

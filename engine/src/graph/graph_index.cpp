@@ -82,9 +82,10 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
             error(p.pointer + "/type", "unknown pass type '" + p.type + "'" + did_you_mean(p.type, reg.names()));
             continue;
         }
-        // Unbound outputs get an implicit resource "<pass>.<pin>" shaped by the pin.
+        // Unbound outputs get an implicit resource "<pass>.<pin>" shaped by the pin; unbound
+        // optional outputs get none (the pass sees connected() == false and skips them).
         for (const auto& pin : t->pins) {
-            if (pin.dir != PinDir::Output || p.outputs.count(pin.name)) continue;
+            if (pin.dir != PinDir::Output || p.outputs.count(pin.name) || pin.optional) continue;
             ResourceDecl r;
             r.name = p.name + "." + pin.name;
             r.kind = pin.kind;
@@ -138,7 +139,7 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
             }
         }
         for (const auto& pin : t->pins) {
-            if (pin.dir != PinDir::Output || p.outputs.count(pin.name)) continue;
+            if (pin.dir != PinDir::Output || p.outputs.count(pin.name) || pin.optional) continue;
             int r = idx.find_resource(p.name + "." + pin.name);
             // A duplicate pass name shares the first pass's implicit names: reported, not bound twice.
             if (r >= 0 && idx.resources[r].implicit && idx.resources[r].pointer == p.pointer)
