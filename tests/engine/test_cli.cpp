@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -21,7 +22,10 @@ struct CliRun {
 CliRun pathlet(const std::string& args) {
     fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs";
     fs::create_directories(dir);
-    std::string out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
+    // ctest runs tests in parallel processes: each run gets its own files.
+    static int counter = 0;
+    std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
+    std::string out = (dir / ("out_" + tag + ".txt")).string(), err = (dir / ("err_" + tag + ".txt")).string();
     std::string cmd = std::string(PATHLET_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
     int status = std::system(cmd.c_str());
     CliRun r;
