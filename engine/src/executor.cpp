@@ -311,7 +311,8 @@ void Executor::run_frame(const FrameInfo& f) {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(0);
-    check_gl(passes_.empty() ? "(engine)" : cg_.passes.back().name, "execute");
+    // Errors seen only here (no debug callback) cannot be pinned to one pass.
+    check_gl("(one of this frame's passes; PATHLET_GL_DEBUG=1 narrows it down)", "execute");
     gl_.set_scope("");
     if (profiler_) profiler_->end_frame();
     // History: what was written this frame becomes next frame's @prev.

@@ -136,7 +136,8 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                                                    {"size", std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y)}},
                                                   i);
                 // A pattern without an extension: EXR keeps float outputs exact, PNG for the rest.
-                if (fs::path(file).extension().empty()) {
+                // (Asked of the pattern: expanded names like "soft.tmp_000" contain dots.)
+                if (fs::path(out.capture).extension().empty()) {
                     const FormatInfo* fi = find_format(rd.internal_format);
                     file += fi && (fi->is_float || fi->depth) ? ".exr" : ".png";
                 }

@@ -67,44 +67,43 @@ Levels make_levels(const pathlet::Params& p) {
 
 class LineAO : public pathlet::Pass {
 public:
-    void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "lineao.frag"}); }
-
-    void execute(pathlet::PassContext& ctx) override {
+    // Everything that depends only on parameters and the scene is uploaded once here: the
+    // program keeps its uniforms, and setup() runs again whenever a parameter changes.
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &ctx.program({"fullscreen.vert", "lineao.frag"});
         const auto& p = ctx.params();
         const Levels L = make_levels(p);
-        const bool pyramid = p.b("use_pyramid") && ctx.connected("pyramid");
+        pyramid_ = p.b("use_pyramid") && ctx.connected("pyramid");
         glm::vec3 light = p.v3("light_dir");
         light = glm::length(light) > 1e-6f ? glm::normalize(light) : glm::vec3(0, 0, 1);
-
-        prog_->use();
+        const GLuint id = prog_->id();
         prog_->set("u_levels", L.count);
-        glUniform1iv(prog_->loc("u_first"), L.count, L.first);
-        glUniform1iv(prog_->loc("u_count"), L.count, L.samples);
-        glUniform1fv(prog_->loc("u_growth"), L.count, L.growth);
-        glUniform1fv(prog_->loc("u_delta"), L.count, L.delta);
-        glUniform4fv(prog_->loc("u_kernel"), GLsizei(std::min<size_t>(L.kernel.size(), kMaxKernel)),
-                     glm::value_ptr(L.kernel[0]));
+        glProgramUniform1iv(id, prog_->loc("u_first"), L.count, L.first);
+        glProgramUniform1iv(id, prog_->loc("u_count"), L.count, L.samples);
+        glProgramUniform1fv(id, prog_->loc("u_growth"), L.count, L.growth);
+        glProgramUniform1fv(id, prog_->loc("u_delta"), L.count, L.delta);
+        glProgramUniform4fv(id, prog_->loc("u_kernel"), GLsizei(std::min<size_t>(L.kernel.size(), kMaxKernel)),
+                            glm::value_ptr(L.kernel[0]));
         prog_->set("u_r0", p.f("r0"));
         prog_->set("u_line_width", ctx.scene().line_width(p.f("line_width")));
         prog_->set("u_strength", p.f("strength"));
         prog_->set("u_delta0", p.f("delta0"));
-        prog_->set("u_use_pyramid", pyramid ? 1 : 0);
+        prog_->set("u_use_pyramid", pyramid_ ? 1 : 0);
+        prog_->set("u_max_lod", pyramid_ ? ctx.texture("pyramid").mips - 1 : 0);
         prog_->set("u_occluder_light", p.b("occluder_light") ? 1 : 0);
         prog_->set("u_light", light);
         prog_->set("u_exponent", p.f("exponent"));
         prog_->set("u_spec_cut", std::pow(1e-4f, 1.0f / p.f("exponent")));
-        glUniform1ui(prog_->loc("u_seed"), uint32_t(p.i("seed")));
+        glProgramUniform1ui(id, prog_->loc("u_seed"), uint32_t(p.i("seed")));
+        samples_ = double(L.kernel.size());
+    }
 
+    void execute(pathlet::PassContext& ctx) override {
+        prog_->use();
         glBindTextureUnit(0, ctx.texture("normal_depth").id);
         glBindTextureUnit(2, ctx.texture("zoom").id);
-        if (pyramid) {
-            pathlet::Texture pyr = ctx.texture("pyramid");
-            glBindTextureUnit(1, pyr.id);
-            prog_->set("u_max_lod", pyr.mips - 1);
-        } else {
-            glBindTextureUnit(1, ctx.texture("normal_depth").id);  // never read; keeps unit 1 valid
-            prog_->set("u_max_lod", 0);
-        }
+        // Unit 1 is never read without the pyramid; binding normal_depth keeps it valid.
+        glBindTextureUnit(1, ctx.texture(pyramid_ ? "pyramid" : "normal_depth").id);
         glDisable(GL_BLEND);
         if (ctx.connected("depth")) {
             // Background stays 1 (cleared); only covered pixels run the shader.
@@ -118,11 +117,13 @@ public:
             ctx.draw_fullscreen();
         }
         for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
-        ctx.stat("samples per pixel", double(L.kernel.size()));
+        ctx.stat("samples per pixel", samples_);
     }
 
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
+    bool pyramid_ = false;
+    double samples_ = 0;
 };
 
 pathlet::PassTypeInfo lineao_type() {

@@ -196,3 +196,13 @@ TEST(Cli, EveryShippedGraphValidates) {
     for (const char* g : {"variant1_lineao", "isl", "lineao_debug", "gbuffer_only", "demo_blur"})
         EXPECT_NE(r.out.find(std::string(g) + ".json: ok"), std::string::npos) << g;
 }
+
+TEST(Cli, CaptureWithoutExtensionPicksExrForFloatAndPngOtherwise) {
+    fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_capture_formats";
+    fs::remove_all(out);
+    CliRun r = pathlet("render " + src("tests/engine/graphs/capture_formats.json") + " --data " +
+                       src("tests/engine/data/two_lines.vtk") + " --time 0 --size 24x16 --quiet --out " + out.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out / "blurred_000.png"));
+    EXPECT_TRUE(fs::exists(out / "soft.tmp_000.exr"));  // the blur's rgba16f intermediate
+}
