@@ -1,0 +1,44 @@
+#include "util/output_check.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace pathlet {
+namespace {
+
+[[noreturn]] void fail(const std::string& what, const std::string& where, const std::string& reason) {
+    throw std::runtime_error("cannot write " + what + " to '" + where + "': " + reason);
+}
+
+}  // namespace
+
+void check_output_dir(const std::string& dir, const std::string& what) {
+    const fs::path d = dir.empty() ? fs::path(".") : fs::path(dir);
+    std::error_code ec;
+    if (fs::exists(d, ec)) {
+        if (!fs::is_directory(d, ec)) fail(what, dir, "it exists and is not a folder");
+    } else if (!fs::create_directories(d, ec) && ec) {
+        fail(what, dir, "cannot create the folder: " + ec.message());
+    }
+    // access(W_OK) misses read-only mounts for root; a real probe file does not.
+    std::string probe = (d / ".pathlet-write-probe-XXXXXX").string();
+    int fd = mkstemp(probe.data());
+    if (fd < 0) fail(what, dir, std::strerror(errno));
+    close(fd);
+    unlink(probe.c_str());
+}
+
+void check_output_file(const std::string& path, const std::string& what) {
+    if (path.empty()) fail(what, path, "empty file name");
+    std::error_code ec;
+    if (fs::is_directory(fs::path(path), ec)) fail(what, path, "it is a folder, not a file name");
+    fs::path parent = fs::path(path).parent_path();
+    check_output_dir(parent.empty() ? "." : parent.string(), what);
+}
+
+}  // namespace pathlet
