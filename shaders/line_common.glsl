@@ -1,15 +1,17 @@
-// Shared by every stage that draws pathlet quads (line_quad.geom and the gbuffer / isl
-// passes). A stage file defines one of LINE_STAGE_VERTEX, LINE_STAGE_GEOMETRY or
-// LINE_STAGE_FRAGMENT before including this, and gets that stage's interface and helpers.
-// The uniforms are set by passes/gbuffer/line_pass.hpp.
+// The line kit's GLSL, shared by every stage that draws pathlet quads. A stage file defines
+// one of LINE_STAGE_VERTEX, LINE_STAGE_GEOMETRY or LINE_STAGE_FRAGMENT before including this
+// and gets that stage's interface and helpers. The uniforms and the per-pathlet buffer are
+// set by the kit's C++ side (pathlet/lines.hpp, lines::Drawer); hooks: line_hooks.glsl.
 #ifndef PATHLET_LINE_COMMON_GLSL
 #define PATHLET_LINE_COMMON_GLSL
+
+#include "line_hooks.glsl"
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform vec2 u_window;       // [t0, t1] in seconds
 uniform int u_windowed;      // 0: draw lines whole
-uniform float u_half_width;  // world units, half the quad width (halo included)
+uniform float u_half_width;  // world units, half the quad width (halo included), before the width hook
 uniform float u_halo;        // fraction of the width that is halo (0 = none)
 uniform float u_halo_depth;  // push-back at the rim, normalised linear depth
 uniform vec3 u_halo_color;
@@ -23,11 +25,12 @@ vec3 line_safe_normalize(vec3 v, vec3 fallback) {
 }
 
 // Members of the stage interfaces (a block name must match across stages; members too).
-// position and tangent are in view space.
-#define LINE_VERTEX_MEMBERS vec3 position; float time; float speed; vec3 tangent; flat int line_id;
-// pos_view: point on the flat quad; side: unit vector across it (s = +1 side);
-// s: -1..1 across the width.
-#define LINE_FRAGMENT_MEMBERS vec3 pos_view; vec3 side; vec3 tangent; float s; float speed; flat int line_id;
+// position and tangent are in view space; arc is the arc length from the line's first point.
+#define LINE_VERTEX_MEMBERS vec3 position; float time; float speed; float arc; vec3 tangent; flat int line_id;
+// pos_view: point on the flat quad; side: unit vector across it (s = +1 side); s: -1..1
+// across the width; half_width: the hooked half width here; age, arc_head, arc_tail: LinePoint.
+#define LINE_FRAGMENT_MEMBERS vec3 pos_view; vec3 side; vec3 tangent; float s; float speed; float time; \
+    float age; float arc_head; float arc_tail; float half_width; flat int line_id;
 
 #ifdef LINE_STAGE_VERTEX
 layout(location = 0) in vec3 a_position;
@@ -35,6 +38,7 @@ layout(location = 1) in float a_time;
 layout(location = 2) in vec3 a_velocity;
 layout(location = 3) in vec3 a_tangent;
 layout(location = 4) in int a_line_id;
+layout(location = 5) in float a_arc;
 out LineVertex { LINE_VERTEX_MEMBERS } v_out;
 
 // View-space point and tangent, once per point (a point is shared by two segments, and
@@ -43,6 +47,7 @@ void line_vertex() {
     v_out.position = (u_view * vec4(a_position, 1.0)).xyz;
     v_out.time = a_time;
     v_out.speed = length(a_velocity);
+    v_out.arc = a_arc;
     v_out.tangent = mat3(u_view) * a_tangent;
     v_out.line_id = a_line_id;
 }
@@ -51,6 +56,23 @@ void line_vertex() {
 #ifdef LINE_STAGE_GEOMETRY
 in LineVertex { LINE_VERTEX_MEMBERS } v_in[];
 out LineFragment { LINE_FRAGMENT_MEMBERS } g_out;
+
+// Per line, this frame (lines::Drawer): arc length at the pathlet's head and tail, and the
+// times that age 0 and age 1 stand for.
+layout(std430, binding = 7) readonly buffer LinePathlets { vec4 line_pathlet[]; };
+
+// The hook's view of a point at data time `time` and arc length `arc` on line `id`.
+LinePoint line_point(float time, float arc, float speed, int id) {
+    vec4 pl = line_pathlet[id];
+    LinePoint p;
+    p.time = time;
+    p.age = clamp((pl.z - time) / max(pl.z - pl.w, 1e-9), 0.0, 1.0);
+    p.arc_from_head = max(pl.x - arc, 0.0);
+    p.arc_from_tail = max(arc - pl.y, 0.0);
+    p.speed = speed;
+    p.line_id = id;
+    return p;
+}
 #endif
 
 #ifdef LINE_STAGE_FRAGMENT
@@ -59,7 +81,7 @@ out LineFragment { LINE_FRAGMENT_MEMBERS } g_out;
 in LineFragment { LINE_FRAGMENT_MEMBERS } g_in;
 
 struct LineFrag {
-    vec3 color;       // colour-mapped speed, before halos and lighting
+    vec3 color;       // colour-mapped speed, before hooks, halos and lighting
     vec3 normal;      // view-space unit normal of the fake tube
     vec3 tangent;     // view-space unit tangent
     vec3 to_viewer;   // view-space unit vector from the fragment to the eye
@@ -67,6 +89,7 @@ struct LineFrag {
     float depth01;    // linear depth over [near, far], halo push-back included, in [0,1]
     float halo;       // 0 outside the halo band, then 0..1 from its inner edge to the rim
     bool in_halo;
+    LinePoint point;  // what the hooks see (time, age, arc lengths, speed, line id)
 };
 
 LineFrag line_fragment() {
@@ -79,9 +102,9 @@ LineFrag line_fragment() {
     vec3 v = line_safe_normalize(f.to_viewer - dot(f.to_viewer, side) * side, vec3(0.0, 0.0, 1.0));
     f.normal = line_safe_normalize(s * side + c * v, v);
     f.tangent = line_safe_normalize(g_in.tangent, vec3(0.0, 1.0, 0.0));
-    // Convex tube: the surface bulges towards the viewer by r * sqrt(1 - s^2).
+    // Convex tube of the hooked radius: the surface bulges towards the viewer by r * sqrt(1 - s^2).
     float near = u_depth_range.x, far = u_depth_range.y;
-    f.eye_depth = max(-g_in.pos_view.z - u_half_width * c, 1e-6);
+    f.eye_depth = max(-g_in.pos_view.z - g_in.half_width * c, 1e-6);
     float inner = 1.0 - u_halo;
     f.in_halo = u_halo > 0.0 && abs(s) > inner;
     f.halo = f.in_halo ? clamp((abs(s) - inner) / u_halo, 0.0, 1.0) : 0.0;
@@ -89,6 +112,12 @@ LineFrag line_fragment() {
     f.depth01 = clamp((f.eye_depth - near) / max(far - near, 1e-6) + u_halo_depth * f.halo, 0.0, 1.0);
     float span = max(u_speed_range.y - u_speed_range.x, 1e-12);
     f.color = colormap(u_colormap, (g_in.speed - u_speed_range.x) / span);
+    f.point.time = g_in.time;
+    f.point.age = clamp(g_in.age, 0.0, 1.0);
+    f.point.arc_from_head = max(g_in.arc_head, 0.0);
+    f.point.arc_from_tail = max(g_in.arc_tail, 0.0);
+    f.point.speed = g_in.speed;
+    f.point.line_id = g_in.line_id;
     return f;
 }
 
@@ -96,6 +125,14 @@ LineFrag line_fragment() {
 // still marks the line's edge (the study: halos read by the start and end of the gradient).
 vec3 line_halo_tint(vec3 color, LineFrag f) {
     return f.in_halo ? mix(color, u_halo_color, 0.5 + 0.5 * f.halo) : color;
+}
+
+// Screen-door transparency for opaque targets: a fragment of opacity a survives where a 4x4
+// ordered-dither threshold is below a (a = 1 always survives, a = 0 never).
+float line_screen_door_threshold(vec2 frag_coord) {
+    const float bayer[16] = float[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+    ivec2 q = ivec2(frag_coord) & 3;
+    return (bayer[q.y * 4 + q.x] + 0.5) / 16.0;
 }
 
 // Window-space depth of linear depth d01, so the z-buffer sees tubes and pushed-back halos.

@@ -1,17 +1,21 @@
 #version 450 core
-// One line-strip segment -> one view-aligned quad (4-vertex strip). The quad is clipped to
-// the time window by interpolating in time, so pathlet heads and tails move smoothly instead
-// of jumping a whole segment per data step. Each end uses the per-point tangent, so the
-// quads of neighbouring segments meet at the same edge (smooth joints, no gaps).
+// The line kit's geometry stage: one line-strip segment -> one view-aligned quad (4-vertex
+// strip). The quad is clipped to the time window by interpolating in time, so pathlet heads
+// and tails move smoothly instead of jumping a whole segment per data step. Each end uses the
+// per-point tangent, so the quads of neighbouring segments meet at the same edge (smooth
+// joints, no gaps), and its width comes from the pass's width hook (line_hooks.glsl) at that
+// end, so a taper is exact where the window clips a segment.
 #define LINE_STAGE_GEOMETRY
 #include "line_common.glsl"
 
 layout(lines) in;
 layout(triangle_strip, max_vertices = 4) out;
 
+float line_width_hook(LinePoint p);  // the pass's hook, linked in beside this file
+
 bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
-void emit_end(vec3 p, vec3 t_view, float speed) {
+void emit_end(vec3 p, vec3 t_view, LinePoint lp) {
     vec3 t = line_safe_normalize(t_view, vec3(0.0, 1.0, 0.0));
     vec3 to_viewer = line_safe_normalize(-p, vec3(0.0, 0.0, 1.0));
     // Across the line and facing the viewer; a line seen end-on gets any perpendicular.
@@ -19,14 +23,20 @@ void emit_end(vec3 p, vec3 t_view, float speed) {
     if (dot(side, side) < 1e-12) side = cross(vec3(0.0, 1.0, 0.0), to_viewer);
     if (dot(side, side) < 1e-12) side = cross(vec3(1.0, 0.0, 0.0), to_viewer);
     side = normalize(side);
+    float hw = u_half_width * max(line_width_hook(lp), 0.0);
     for (int k = 0; k < 2; ++k) {
         float s = k == 0 ? -1.0 : 1.0;
-        g_out.pos_view = p + s * u_half_width * side;
+        g_out.pos_view = p + s * hw * side;
         g_out.side = side;
         g_out.tangent = t;
         g_out.s = s;
-        g_out.speed = speed;
-        g_out.line_id = v_in[0].line_id;
+        g_out.speed = lp.speed;
+        g_out.time = lp.time;
+        g_out.age = lp.age;
+        g_out.arc_head = lp.arc_from_head;
+        g_out.arc_tail = lp.arc_from_tail;
+        g_out.half_width = hw;
+        g_out.line_id = lp.line_id;
         gl_Position = u_proj * vec4(g_out.pos_view, 1.0);
         EmitVertex();
     }
@@ -45,9 +55,12 @@ void main() {
             fb = clamp((u_window.y - t0) / dt, 0.0, 1.0);
         }
     }
+    int id = v_in[0].line_id;
     vec3 ta = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, fa), v_in[0].tangent);
     vec3 tb = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, fb), v_in[1].tangent);
-    emit_end(mix(p0, p1, fa), ta, mix(v_in[0].speed, v_in[1].speed, fa));
-    emit_end(mix(p0, p1, fb), tb, mix(v_in[0].speed, v_in[1].speed, fb));
+    emit_end(mix(p0, p1, fa), ta, line_point(mix(t0, t1, fa), mix(v_in[0].arc, v_in[1].arc, fa),
+                                             mix(v_in[0].speed, v_in[1].speed, fa), id));
+    emit_end(mix(p0, p1, fb), tb, line_point(mix(t0, t1, fb), mix(v_in[0].arc, v_in[1].arc, fb),
+                                             mix(v_in[0].speed, v_in[1].speed, fb), id));
     EndPrimitive();
 }

@@ -12,8 +12,9 @@ struct LineVertex {
     glm::vec3 velocity;
     glm::vec3 tangent;
     int32_t line_id;
+    float arc;  // arc length from the line's first point
 };
-static_assert(sizeof(LineVertex) == 44);
+static_assert(sizeof(LineVertex) == 48);
 
 glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
     float l = glm::length(v);
@@ -66,14 +67,21 @@ void GpuScene::upload(const Scene& scene) {
     // Interleave once; the tangent is the central difference (one-sided at the ends), so the
     // geometry shader gets smooth joins without adjacency primitives.
     std::vector<LineVertex> v(pl.position.size());
+    arc_.assign(pl.position.size(), 0.0f);
     for (size_t li = 0; li < pl.lines.size(); ++li) {
         const LineRange r = pl.lines[li];
+        double arc = 0.0;
         for (uint32_t k = 0; k < r.count; ++k) {
             size_t i = r.first + k;
             size_t a = r.first + (k > 0 ? k - 1 : 0), b = r.first + std::min(k + 1, r.count - 1);
+            if (k > 0) {
+                float step = glm::length(pl.position[i] - pl.position[i - 1]);
+                if (std::isfinite(step)) arc += step;  // a bad point adds nothing, never NaN
+            }
+            arc_[i] = float(arc);
             glm::vec3 vel = i < pl.velocity.size() ? pl.velocity[i] : glm::vec3(0);
             v[i] = {pl.position[i], i < pl.time.size() ? pl.time[i] : 0.0f, vel,
-                    safe_normalize(pl.position[b] - pl.position[a], glm::vec3(1, 0, 0)), int32_t(li)};
+                    safe_normalize(pl.position[b] - pl.position[a], glm::vec3(1, 0, 0)), int32_t(li), arc_[i]};
         }
     }
     glCreateBuffers(1, &line_vbo_);
@@ -93,6 +101,7 @@ void GpuScene::upload(const Scene& scene) {
     glEnableVertexArrayAttrib(line_vao_, 4);
     glVertexArrayAttribIFormat(line_vao_, 4, 1, GL_INT, offsetof(LineVertex, line_id));
     glVertexArrayAttribBinding(line_vao_, 4, 0);
+    attrib(5, 1, offsetof(LineVertex, arc));
 
     if (scene.mesh && !scene.mesh->empty()) {
         Mesh m = *scene.mesh;
@@ -141,6 +150,33 @@ void GpuScene::ranges(double t0, double t1, Ranges& out) const {
         out.first.push_back(GLint(r.first + a));
         out.count.push_back(GLsizei(b - a));
         out.segments += b - a - 1;
+    }
+}
+
+void GpuScene::pathlets(double t0, double t1, std::vector<glm::vec4>& out) const {
+    out.clear();
+    if (!cpu_) return;
+    const Pathlines& pl = cpu_->lines;
+    const bool whole = !(t1 > t0);
+    out.resize(pl.lines.size(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+    for (size_t li = 0; li < pl.lines.size(); ++li) {
+        const LineRange r = pl.lines[li];
+        if (r.count < 1 || pl.time.size() < size_t(r.first) + r.count) continue;
+        const float* t = pl.time.data() + r.first;
+        const float* s = arc_.data() + r.first;
+        // Arc length at time x, linear between points, clamped to the line's ends.
+        auto arc_at = [&](double x) {
+            if (x <= t[0]) return s[0];
+            if (x >= t[r.count - 1]) return s[r.count - 1];
+            uint32_t k = uint32_t(std::upper_bound(t, t + r.count, float(x)) - t);  // t[k-1] <= x < t[k]
+            double dt = double(t[k]) - double(t[k - 1]);
+            double f = dt > 1e-12 ? (x - t[k - 1]) / dt : 1.0;
+            return float(s[k - 1] + f * (s[k] - s[k - 1]));
+        };
+        if (whole)
+            out[li] = {s[r.count - 1], s[0], t[r.count - 1], t[0]};
+        else
+            out[li] = {arc_at(t1), arc_at(t0), float(t1), float(t0)};
     }
 }
 

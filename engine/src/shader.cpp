@@ -1,5 +1,7 @@
 #include <pathlet/shader.hpp>
 
+#include "graph/graph_internal.hpp"
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include <filesystem>
@@ -96,6 +98,20 @@ std::string map_log(const std::string& log, const std::vector<std::string>& file
     return out.str();
 }
 
+// Uniform names declared in a source: "uniform vec3 a, b[4];" gives a and b. Blocks
+// ("uniform Name { ... }") are skipped: their members are not set by name.
+void collect_uniforms(const std::string& src, std::set<std::string>& out) {
+    static const std::regex decl(R"(\buniform\s+(?:(?:lowp|mediump|highp)\s+)?\w+\s+([^;{]+);)");
+    for (auto it = std::sregex_iterator(src.begin(), src.end(), decl); it != std::sregex_iterator(); ++it) {
+        std::stringstream names((*it)[1].str());
+        std::string n;
+        while (std::getline(names, n, ',')) {
+            size_t a = n.find_first_not_of(" \t\n"), b = n.find_first_of(" \t\n[=", a);
+            if (a != std::string::npos) out.insert(n.substr(a, b == std::string::npos ? b : b - a));
+        }
+    }
+}
+
 GLenum stage_of(const std::string& file) {
     std::string ext = fs::path(file).extension().string();
     if (ext == ".vert") return GL_VERTEX_SHADER;
@@ -121,6 +137,8 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
         std::string path = find_shader_file(name, dirs);
         std::vector<std::string> files;
         std::string src = expand(path, dirs, files, 0, true, defines);
+        collect_uniforms(src, prog.declared_);
+        prog.files_ += (prog.files_.empty() ? "" : ", ") + name;
         GLuint sh = glCreateShader(stage_of(path));
         shaders.push_back(sh);
         const char* p = src.c_str();
@@ -154,12 +172,17 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     return prog;
 }
 
-ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept : id_(o.id_), locs_(std::move(o.locs_)) { o.id_ = 0; }
+ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept
+    : id_(o.id_), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)) {
+    o.id_ = 0;
+}
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
     if (this != &o) {
         if (id_) glDeleteProgram(id_);
         id_ = o.id_;
         locs_ = std::move(o.locs_);
+        declared_ = std::move(o.declared_);
+        files_ = std::move(o.files_);
         o.id_ = 0;
     }
     return *this;
@@ -172,8 +195,18 @@ GLint ShaderProgram::loc(const std::string& uniform) const {
     auto it = locs_.find(uniform);
     if (it != locs_.end()) return it->second;
     GLint l = glGetUniformLocation(id_, uniform.c_str());
+    if (l < 0 && !declares(uniform)) {
+        std::vector<std::string> names(declared_.begin(), declared_.end());
+        throw ShaderError("program (" + files_ + ") has no uniform '" + uniform + "'" +
+                          graph_detail::did_you_mean(uniform, names) + " (a misspelt name would silently do nothing)");
+    }
     locs_[uniform] = l;
     return l;
+}
+
+bool ShaderProgram::declares(const std::string& uniform) const {
+    // "u_light[2].dir" is declared when "u_light" is.
+    return declared_.count(uniform.substr(0, uniform.find_first_of("[."))) > 0;
 }
 
 void ShaderProgram::set(const std::string& n, int v) const { glProgramUniform1i(id_, loc(n), v); }

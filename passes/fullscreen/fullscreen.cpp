@@ -19,10 +19,12 @@ public:
             std::string pin = "input" + std::to_string(i);
             if (ctx.connected(pin)) glBindTextureUnit(GLuint(i), ctx.texture(pin).id);
         }
-        prog_->set("u_time", float(ctx.time()));
-        prog_->set("u_frame", int(ctx.frame_index()));
-        prog_->set("u_size", ctx.output_size());
-        prog_->set("u_param", glm::vec4(ctx.params().v3("param"), ctx.params().f("strength")));
+        // The user's shader declares whichever of these it needs.
+        const pathlet::ShaderProgram& p = *prog_;
+        if (p.declares("u_time")) p.set("u_time", float(ctx.time()));
+        if (p.declares("u_frame")) p.set("u_frame", int(ctx.frame_index()));
+        if (p.declares("u_size")) p.set("u_size", ctx.output_size());
+        if (p.declares("u_param")) p.set("u_param", glm::vec4(ctx.params().v3("param"), ctx.params().f("strength")));
         glDisable(GL_DEPTH_TEST);
         ctx.draw_fullscreen();
     }

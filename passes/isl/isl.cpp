@@ -1,31 +1,25 @@
 // isl: illuminated streamlines (Zoeckler et al. 1996) on the same pathlet quads, colours,
 // time window and halos as the gbuffer pass: a local-lighting image to compare LineAO with.
-#include "line_pass.hpp"
-
+#include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
 #include <glm/glm.hpp>
 
 namespace {
 
-namespace lp = pathlet::line_pass;
+namespace lines = pathlet::lines;
 
 class Isl : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"isl.vert", "line_quad.geom", "isl.frag"});
+        prog_ = &lines::program(ctx, {"isl.frag"});
     }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
         ctx.bind_framebuffer({"color"}, "depth");
-        lp::prepare_clear();
-        GLuint fbo = lp::bound_framebuffer();
-        glm::vec3 bg = p.v3("background");
-        const float color[4] = {bg.x, bg.y, bg.z, 1.0f};  // a final image: opaque everywhere
-        const float far = 1.0f;
-        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, color);
-        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far);
+        lines::clear_color(0, glm::vec4(p.v3("background"), 1.0f));  // a final image: opaque everywhere
+        lines::clear_depth(1.0f);
 
         prog_->use();
         glm::vec3 dir = p.v3("light_dir");
@@ -33,19 +27,19 @@ public:
         prog_->set("u_light", to_light);
         prog_->set("u_k", glm::vec4(p.f("ambient"), p.f("diffuse"), p.f("specular"), p.f("exponent")));
         prog_->set("u_diffuse_exponent", p.f("diffuse_exponent"));
-        lp::draw(ctx, *prog_, ranges_);
+        drawer_.draw(ctx, *prog_);
     }
 
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
-    pathlet::GpuScene::Ranges ranges_;
+    lines::Drawer drawer_;
 };
 
 pathlet::PassTypeInfo isl_type() {
     pathlet::PassTypeBuilder b("isl",
                                "illuminated streamlines (Zoeckler et al.): pathlet quads lit from their tangent, "
                                "with the gbuffer pass's colours, time window and halos");
-    lp::declare_params(b)
+    lines::declare_params(b)
         .param_vec3("light_dir", {1.0f, -1.0f, -1.0f},
                     "direction the light travels, view space (default: from the upper left, in front, into the scene)")
         .param_float("ambient", 0.2, 0.0, 1.0, "ambient factor on the line colour")

@@ -4,6 +4,8 @@
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 
+vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's hook (default: the colour as it is)
+
 uniform vec3 u_light;  // towards the light, view space, unit
 uniform vec4 u_k;      // ambient, diffuse, specular, specular exponent n
 uniform float u_diffuse_exponent;
@@ -12,11 +14,13 @@ layout(location = 0) out vec4 o_color;
 
 void main() {
     LineFrag f = line_fragment();
+    vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
+    if (c.a < line_screen_door_threshold(gl_FragCoord.xy)) discard;
     float lt = dot(u_light, f.tangent), vt = dot(f.to_viewer, f.tangent);
     float sl = sqrt(max(1.0 - lt * lt, 0.0)), sv = sqrt(max(1.0 - vt * vt, 0.0));
     float diffuse = pow(sl, u_diffuse_exponent);
     float specular = pow(max(sl * sv - lt * vt, 0.0), u_k.w);
-    vec3 lit = f.color * (u_k.x + u_k.y * diffuse) + vec3(u_k.z * specular);
+    vec3 lit = c.rgb * (u_k.x + u_k.y * diffuse) + vec3(u_k.z * specular);
     o_color = vec4(line_halo_tint(clamp(lit, 0.0, 1.0), f), 1.0);
     gl_FragDepth = line_window_depth(f.depth01);
 }

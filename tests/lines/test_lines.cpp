@@ -400,14 +400,15 @@ TEST(lines, BrokenShaderNamesFileAndLine) {
     fs::create_directories(dir);
     const fs::path src = PATHLET_SOURCE_DIR;
     {
-        int line = copy_broken(src / "passes/gbuffer/gbuffer.frag", dir, "LineFrag f = line_fragment();",
+        int line = copy_broken(src / "shaders/line_gbuffer.frag", dir, "LineFrag f = line_fragment();",
                                "    LineFrag f = line_fragment() +;");
         ASSERT_GT(line, 0);
         ShaderPathGuard guard(dir.string());
         std::string msg = render_error("gbuffer_only.json");
         EXPECT_NE(msg.find("GLSL compile error"), std::string::npos) << msg;
-        EXPECT_NE(msg.find((dir / "gbuffer.frag").string() + ":" + std::to_string(line) + ":"), std::string::npos) << msg;
-        fs::remove(dir / "gbuffer.frag");
+        EXPECT_NE(msg.find((dir / "line_gbuffer.frag").string() + ":" + std::to_string(line) + ":"), std::string::npos)
+            << msg;
+        fs::remove(dir / "line_gbuffer.frag");
     }
     {
         // A shared include: the message names the included file, not the stage file.

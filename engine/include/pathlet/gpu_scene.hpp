@@ -10,8 +10,9 @@
 
 namespace pathlet {
 
-// Vertex layout of line_vao(): location 0 position (vec3), 1 time (float),
-// 2 velocity (vec3), 3 tangent (vec3, unit, along the line), 4 line id (int, as float-free ivec via glVertexAttribIPointer).
+// Vertex layout of line_vao(): location 0 position (vec3), 1 time (float), 2 velocity (vec3),
+// 3 tangent (vec3, unit, along the line), 4 line id (int, an integer attribute), 5 arc length
+// from the line's first point (float, world units).
 class GpuScene {
 public:
     GpuScene() = default;
@@ -35,6 +36,11 @@ public:
         size_t segments = 0;
     };
     void ranges(double t0, double t1, Ranges& out) const;
+    // Per line (indexed by line id), what the line kit's hooks measure from: arc length at the
+    // pathlet's head and tail and the times that stand for age 0 and age 1. Windowed: the head
+    // is t1 and the tail t0, clamped to the line for the arc lengths; whole lines (t1 <= t0):
+    // the line's last and first points.
+    void pathlets(double t0, double t1, std::vector<glm::vec4>& out) const;
     // Draws the ranges as GL_LINE_STRIPs with line_vao() bound (the caller binds a program).
     void draw_lines(const Ranges& r) const;
 
@@ -56,6 +62,7 @@ public:
 private:
     void release();
     const Scene* cpu_ = nullptr;
+    std::vector<float> arc_;  // per point, arc length from its line's first point
     GLuint line_vao_ = 0, line_vbo_ = 0;
     GLuint mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
     GLsizei mesh_index_count_ = 0;

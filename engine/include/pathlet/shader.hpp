@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,7 +34,10 @@ public:
 
     GLuint id() const { return id_; }
     void use() const { glUseProgram(id_); }
-    GLint loc(const std::string& uniform) const;  // cached; -1 if optimised away
+    // Cached; -1 if declared but optimised away. A name no source of the program declares
+    // (a typo: "u_tial") throws ShaderError naming the program's files and the uniform.
+    GLint loc(const std::string& uniform) const;
+    bool declares(const std::string& uniform) const;
     void set(const std::string& n, int v) const;
     void set(const std::string& n, float v) const;
     void set(const std::string& n, glm::vec2 v) const;
@@ -45,6 +49,8 @@ public:
 private:
     GLuint id_ = 0;
     mutable std::map<std::string, GLint> locs_;
+    std::set<std::string> declared_;  // uniform names found in the expanded sources
+    std::string files_;               // "a.vert, b.geom, c.frag", for messages
 };
 
 // Finds a file on the search path; throws ShaderError listing the directories searched.

@@ -1,0 +1,106 @@
+// The line kit: what every pass that draws pathlets uses, in tree or out (gbuffer, isl,
+// geometric_fade, a researcher's fade). It owns the shared line parameters (declared once),
+// the time-window draw, colour maps, halos and the tube normal and depth; a pass plugs in
+// small GLSL hooks instead of forking the shaders:
+//
+//   width hook (.geom):  float line_width_hook(LinePoint p)             multiplier of the width
+//   colour hook (.frag): vec4  line_color_hook(vec4 rgba, LinePoint p)   colour and opacity
+//
+// LinePoint (shaders/line_hooks.glsl) carries the point's time, its age in the window (0 at
+// the head, 1 at the tail), the arc length from the head and from the tail, speed, line id.
+// The kit derives the quad, tube normal and tube depth from the hooked width, so a taper is
+// a hook and a parameter list. A whole fade strategy (see plugins/example_fade/):
+//
+//   class Fade : public pathlet::lines::GBufferPass {
+//   public:
+//       Fade() : GBufferPass({.color = "fade_color.frag"}) {}
+//       void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& p) override {
+//           p.set("u_strength", ctx.params().f("strength"));
+//       }
+//   };
+//   PATHLET_PLUGIN("fade", { sink->add(pathlet::lines::gbuffer_pass_type("fade", "...")
+//                                .param_float("strength", 1, 0, 1, "...").make<Fade>()); })
+#pragma once
+
+#include <pathlet/gpu_scene.hpp>
+#include <pathlet/pass.hpp>
+#include <pathlet/shader.hpp>
+
+#include <string>
+#include <vector>
+
+namespace pathlet::lines {
+
+// Shader storage binding the kit uses for its per-pathlet buffer; passes use other points.
+constexpr GLuint kPathletBinding = 7;
+
+// GLSL hook files, found on the shader path (the pass's own folder first). Empty: the kit's
+// default (full width; the colour map as it is).
+struct Hooks {
+    std::string width;  // .geom defining float line_width_hook(LinePoint p)
+    std::string color;  // .frag defining vec4 line_color_hook(vec4 rgba, LinePoint p)
+};
+
+// Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl.
+const std::vector<std::string>& colormaps();
+int colormap_index(const std::string& name);
+
+// The shared line parameters: window, line_width, halo, halo_color, halo_depth, colormap,
+// speed_min, speed_max, background. Declared here once for every line pass.
+PassTypeBuilder& declare_params(PassTypeBuilder& b);
+// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id.
+PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
+// A G-buffer line pass type: the shared parameters and the G-buffer outputs; add your own
+// parameters and finish with .make<YourPass>().
+PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& doc);
+
+// A program of the kit's vertex and geometry stages (line_kit.vert, line_quad.geom), the
+// width hook, the pass's fragment shader(s) and the colour hook. Cached by the context.
+ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks = {},
+                       const std::vector<std::string>& defines = {});
+
+// Draws the pathlets of the current time window: sets the kit's uniforms on `prog` (in use),
+// uploads the per-pathlet buffer, draws with depth testing, reports the segment count.
+class Drawer {
+public:
+    Drawer() = default;
+    Drawer(const Drawer&) = delete;
+    Drawer& operator=(const Drawer&) = delete;
+    ~Drawer();
+    void draw(PassContext& ctx, const ShaderProgram& prog);
+    // The same uniforms and buffer without drawing (for a pass that issues its own draws).
+    void prepare(PassContext& ctx, const ShaderProgram& prog);
+    const GpuScene::Ranges& ranges() const { return ranges_; }
+
+private:
+    GpuScene::Ranges ranges_;
+    std::vector<glm::vec4> pathlets_;
+    GLuint buffer_ = 0;
+    size_t capacity_ = 0;
+};
+
+// Clears the bound framebuffer's colour attachment `index` / depth, whatever the masks were.
+void clear_color(int index, glm::vec4 value);
+void clear_color_int(int index, glm::ivec4 value);
+void clear_depth(float value = 1.0f);
+
+// The G-buffer line pass, ready to subclass: `gbuffer` is this with no hooks, a fade is this
+// with a hook and its uniforms. Writes the outputs of declare_gbuffer_outputs().
+class GBufferPass : public Pass {
+public:
+    explicit GBufferPass(Hooks hooks = {}) : hooks_(std::move(hooks)) {}
+    void setup(PassContext& ctx) override;
+    void execute(PassContext& ctx) override;
+
+protected:
+    // The hooks' own uniforms, every frame, with the program in use. A name the program does
+    // not declare throws (a typo must not silently switch a fade off).
+    virtual void set_uniforms(PassContext& ctx, const ShaderProgram& prog) {}
+
+    Hooks hooks_;
+    ShaderProgram* prog_ = nullptr;
+    Drawer drawer_;
+    bool write_id_ = false;
+};
+
+}  // namespace pathlet::lines
