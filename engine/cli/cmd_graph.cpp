@@ -37,6 +37,7 @@ int run(const std::vector<std::string>& argv) {
     std::string path = resolve_graph_path(a.pos("GRAPH"));
     try {
         GraphFile g = parse_graph_file(path);
+        rt.load_graph_plugins(g);
         std::vector<Diagnostic> diags;
         apply_overrides(g, a.all("set"), rt.registry, diags);
         if (!diags.empty()) throw GraphError(diags);

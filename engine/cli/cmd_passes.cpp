@@ -14,6 +14,8 @@ int run(const std::vector<std::string>& argv) {
     a.option("describe", "TYPE", "", "print the parameters and pins of one pass type")
         .multi("plugin-dir", "DIR", "also load plugins from DIR (before PATHLET_PLUGIN_PATH and the built-in folder)")
         .flag("json", "print the declarations as JSON (for tools and docs)")
+        .flag("markdown", "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them "
+                          "(scripts/update-pass-docs.sh)")
         .example("pathlet passes", "list all pass types")
         .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
     if (!a.parse(argv)) return 0;
@@ -28,7 +30,7 @@ int run(const std::vector<std::string>& argv) {
                          rt.plugin_problems_note().c_str());
             return 1;
         }
-        std::fputs(t->describe().c_str(), stdout);
+        std::fputs((a.has("markdown") ? t->markdown() : t->describe()).c_str(), stdout);
         return 0;
     }
     if (a.has("json")) {

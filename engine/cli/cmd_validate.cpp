@@ -36,6 +36,7 @@ int run(const std::vector<std::string>& argv) {
         std::vector<Diagnostic> diags;
         try {
             GraphFile g = parse_graph_file(f);
+            rt.load_graph_plugins(g);
             apply_overrides(g, a.all("set"), rt.registry, diags);
             auto more = validate_graph(g, rt.registry);
             diags.insert(diags.end(), more.begin(), more.end());

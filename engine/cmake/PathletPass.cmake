@@ -1,10 +1,10 @@
-# pathlet_add_pass(<name> SOURCES a.cpp ... [SHADERS x.frag ...])
+# pathlet_add_pass(<name> SOURCES a.cpp ... [SHADERS x.frag ...] [NO_INSTALL])
 #
 # Builds a pass plugin: a MODULE library named <name>.so whose shaders travel with it in a
 # folder <name>/ beside it (build tree and install tree alike), so the engine finds them.
 # Used by the built-in passes and, through find_package(pathlet), by out-of-tree plugins.
 function(pathlet_add_pass name)
-  cmake_parse_arguments(P "" "" "SOURCES;SHADERS" ${ARGN})
+  cmake_parse_arguments(P "NO_INSTALL" "" "SOURCES;SHADERS" ${ARGN})
   if(NOT PATHLET_PASS_OUTPUT_DIR)
     set(PATHLET_PASS_OUTPUT_DIR ${CMAKE_BINARY_DIR}/passes)
   endif()
@@ -36,8 +36,15 @@ function(pathlet_add_pass name)
       COMMAND ${CMAKE_COMMAND} -E copy_if_different ${P_SHADERS} ${PATHLET_PASS_OUTPUT_DIR}/${name}/
       WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
   endif()
+  if(P_NO_INSTALL)  # test fixtures
+    return()
+  endif()
   install(TARGETS ${name} LIBRARY DESTINATION ${PATHLET_PASS_INSTALL_DIR})
   if(P_SHADERS)
     install(FILES ${P_SHADERS} DESTINATION ${PATHLET_PASS_INSTALL_DIR}/${name})
+  endif()
+  # The pass's README (if any) travels with it: docs next to the plugin.
+  if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/README.md)
+    install(FILES ${CMAKE_CURRENT_SOURCE_DIR}/README.md DESTINATION ${PATHLET_PASS_INSTALL_DIR}/${name})
   endif()
 endfunction()

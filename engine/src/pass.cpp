@@ -188,6 +188,48 @@ std::string PassTypeInfo::describe() const {
     return s.str();
 }
 
+namespace {
+std::string md_cell(std::string s) {  // a table cell: no pipes, no newlines
+    for (char& c : s)
+        if (c == '\n') c = ' ';
+    std::string out;
+    for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+}
+std::string md_pin_shape(const PinDecl& p) {
+    if (p.kind == PinKind::Buffer)
+        return "buffer" + (p.bytes ? ", " + std::to_string(p.bytes) + " B" : std::string()) +
+               (p.bytes_per_pixel ? ", " + std::to_string(p.bytes_per_pixel) + " B/pixel" : std::string());
+    std::string s = p.format;
+    if (p.mips != 1) s += p.mips == 0 ? ", mips" : ", " + std::to_string(p.mips) + " mips";
+    if (p.scale != 1.0f) {
+        std::ostringstream k;
+        k << p.scale;
+        s += ", " + k.str() + "x";
+    }
+    return s;
+}
+}  // namespace
+
+std::string PassTypeInfo::markdown() const {
+    std::ostringstream s;
+    s << "| parameter | type | default | range | meaning |\n|---|---|---|---|---|\n";
+    for (const auto& p : params) {
+        std::string range;
+        if ((p.type == ParamType::Int || p.type == ParamType::Float) && (std::isfinite(p.min) || std::isfinite(p.max)))
+            range = range_text(p);
+        if (p.type == ParamType::Enum) range = join(p.choices);
+        s << "| `" << p.name << "` | " << to_string(p.type) << " | `" << md_cell(p.def.dump()) << "` | " << md_cell(range)
+          << " | " << md_cell(p.doc) << " |\n";
+    }
+    if (params.empty()) s << "| (none) | | | | |\n";
+    s << "\n| pin | direction | kind, format | meaning |\n|---|---|---|---|\n";
+    for (const auto& p : pins)
+        s << "| `" << p.name << "` | " << (p.dir == PinDir::Input ? "in" : "out") << (p.optional ? " (optional)" : "")
+          << " | " << md_pin_shape(p) << " | " << md_cell(p.doc) << " |\n";
+    return s.str();
+}
+
 PassTypeBuilder::PassTypeBuilder(std::string type, std::string doc) {
     info_.type = std::move(type);
     info_.doc = std::move(doc);

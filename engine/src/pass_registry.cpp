@@ -1,5 +1,7 @@
 #include "pass_registry.hpp"
 
+#include <algorithm>
+
 #include <stdexcept>
 
 namespace pathlet {
@@ -29,6 +31,10 @@ std::vector<std::string> PassRegistry::names() const {
     std::vector<std::string> v;
     for (const auto& [k, t] : types_) v.push_back(k);
     return v;
+}
+
+void PassRegistry::add_searched_dir(const std::string& dir) {
+    if (std::find(searched_.begin(), searched_.end(), dir) == searched_.end()) searched_.push_back(dir);
 }
 
 }  // namespace pathlet

@@ -17,8 +17,13 @@ public:
     std::vector<const PassTypeInfo*> all() const;  // sorted by type name
     std::vector<std::string> names() const;
 
+    // Folders the plugin host searched, in order (for "unknown pass type" hints).
+    void add_searched_dir(const std::string& dir);
+    const std::vector<std::string>& searched_dirs() const { return searched_; }
+
 private:
     std::map<std::string, PassTypeInfo> types_;
+    std::vector<std::string> searched_;
 };
 
 }  // namespace pathlet

@@ -123,6 +123,7 @@ void PluginHost::load_file(const std::string& path) {
 
 void PluginHost::load_dirs(const std::vector<std::string>& dirs) {
     for (const auto& dir : dirs) {
+        registry_.add_searched_dir(dir);
         std::error_code ec;
         if (!fs::is_directory(dir, ec)) continue;
         std::vector<fs::path> files;

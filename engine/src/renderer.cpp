@@ -80,6 +80,7 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
     RenderResult res;
     GraphFile g = parse_graph_file(opt.graph_path);
+    rt.load_graph_plugins(g);
     std::vector<Diagnostic> diags;
     apply_overrides(g, opt.sets, rt.registry, diags);
     if (!diags.empty()) throw GraphError(diags);

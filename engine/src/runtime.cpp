@@ -1,11 +1,21 @@
 #include "runtime.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace pathlet {
 
 void Runtime::load_plugins(const std::vector<std::string>& extra_dirs) {
     host.load_dirs(PluginHost::search_path(extra_dirs));
+}
+
+void Runtime::load_graph_plugins(const GraphFile& g) {
+    std::vector<std::string> fresh;
+    for (const auto& d : g.plugin_dirs) {
+        const auto& seen = registry.searched_dirs();
+        if (std::find(seen.begin(), seen.end(), d) == seen.end()) fresh.push_back(d);
+    }
+    host.load_dirs(fresh);
 }
 
 GlContext& Runtime::ensure_gl(bool quiet) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gl_context.hpp"
+#include "graph/graph_model.hpp"
 #include "pass_registry.hpp"
 #include "plugin_host.hpp"
 
@@ -19,6 +20,8 @@ struct Runtime {
 
     // Loads every plugin on the search path; problems are kept in host.problems().
     void load_plugins(const std::vector<std::string>& extra_dirs);
+    // Loads the plugin folders a graph file names ("plugin_dirs"), once each.
+    void load_graph_plugins(const GraphFile& g);
     // Creates the GL context (once) and prints its renderer line unless quiet.
     GlContext& ensure_gl(bool quiet);
     // Text listing plugin problems, to append to "unknown pass type" errors.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs Pathlet into a temporary prefix, builds plugins/example_vignette against that SDK
-# only (a separate CMake project), and renders a graph that uses the out-of-tree pass.
+# Installs Pathlet into a temporary prefix, builds plugins/example_vignette (a full-screen pass)
+# and plugins/example_fade (a fade strategy on the line kit) against that SDK only (separate
+# CMake projects), and renders graphs that use the out-of-tree passes.
 set -euo pipefail
 BUILD=$1 SRC=$2 WORK=$3
 rm -rf "$WORK"
@@ -20,4 +21,20 @@ if "$PATHLET" validate "$SRC/plugins/example_vignette/vignette_demo.json" 2>"$WO
   echo "validate should fail without the plugin"; exit 1
 fi
 grep -q "/passes/1/type" "$WORK/validate.err"
-echo "sdk: installed, built the example plugin out of tree, rendered with it"
+grep -q "plugin-dir" "$WORK/validate.err"
+
+# The line kit is installed: header, shaders, pass READMEs.
+test -f "$WORK/prefix/include/pathlet/lines.hpp"
+test -f "$WORK/prefix/share/pathlet/shaders/line_hooks.glsl"
+test -f "$WORK/prefix/lib/pathlet/passes/gbuffer/README.md"
+! grep -l "shared/" "$WORK"/prefix/lib/pathlet/passes/*/README.md
+
+# A fade strategy built out of tree against the kit, rendered through LineAO.
+cmake -S "$SRC/plugins/example_fade" -B "$WORK/fade" -DCMAKE_PREFIX_PATH="$WORK/prefix" \
+      -DCMAKE_BUILD_TYPE=Release >"$WORK/fade-configure.log"
+cmake --build "$WORK/fade" >"$WORK/fade-build.log"
+"$PATHLET" passes --describe desaturate_fade --plugin-dir "$WORK/fade" | grep -q "start (float"
+"$PATHLET" render "$SRC/plugins/example_fade/desaturate_demo.json" --plugin-dir "$WORK/fade" \
+  --data "$SRC/tests/engine/data/two_lines.vtk" --time 1 --size 96x64 --out "$WORK/out" --quiet >"$WORK/fade-render.log"
+test -s "$WORK/out/desaturate_demo/00000.png"
+echo "sdk: installed, built both example plugins out of tree, rendered with them"

@@ -70,6 +70,7 @@ struct PassTypeInfo {
     const PinDecl* pin(const std::string& name) const;
     json default_params() const;
     std::string describe() const;  // the text of `pathlet passes --describe TYPE`
+    std::string markdown() const;  // parameter and pin tables for the pass README (`--markdown`)
 };
 
 // Fluent builder: the single place a pass type states what it is.

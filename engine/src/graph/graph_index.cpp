@@ -64,6 +64,14 @@ std::string GraphIndex::resolved_format(int r) const {
     return p && p->kind == PinKind::Texture && p->format != "any" ? p->format : "";
 }
 
+// Where plugins were looked for, and the three ways to add a folder.
+std::string unknown_type_hint(const PassRegistry& reg) {
+    std::string dirs = reg.searched_dirs().empty() ? std::string("(no folder)") : join(reg.searched_dirs(), ", ");
+    return "; no plugin on the search path provides it (searched: " + dirs +
+           "). Add the folder holding its .so with --plugin-dir DIR, PATHLET_PLUGIN_PATH=DIR[:DIR...], or "
+           "\"plugin_dirs\": [\"DIR\"] in the graph (relative to the graph file)";
+}
+
 GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<Diagnostic>& diags) {
     GraphIndex idx;
     idx.g = &g;
@@ -79,7 +87,8 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
         const PassTypeInfo* t = reg.find(p.type);
         idx.types.push_back(t);
         if (!t) {
-            error(p.pointer + "/type", "unknown pass type '" + p.type + "'" + did_you_mean(p.type, reg.names()));
+            error(p.pointer + "/type", "unknown pass type '" + p.type + "'" + did_you_mean(p.type, reg.names()) +
+                                           unknown_type_hint(reg));
             continue;
         }
         // Unbound outputs get an implicit resource "<pass>.<pin>" shaped by the pin; unbound

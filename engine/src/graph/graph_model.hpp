@@ -84,6 +84,7 @@ struct GraphFile {
     std::vector<ResourceDecl> resources;
     std::vector<PassDecl> passes;
     std::vector<OutputDecl> outputs;
+    std::vector<std::string> plugin_dirs;  // "plugin_dirs": folders of plugins, resolved against the file's folder
 };
 
 // ---- compiled ---------------------------------------------------------------------------

@@ -40,6 +40,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -60,8 +61,22 @@ public:
             error("", "a graph file must be a JSON object");
             return g;
         }
-        check_keys(root, "", {"$schema", "version", "name", "description", "variables", "resources", "passes", "outputs"},
+        check_keys(root, "",
+                   {"$schema", "version", "name", "description", "plugin_dirs", "variables", "resources", "passes",
+                    "outputs"},
                    "top-level key");
+        if (const json* dirs = array_at(root, "plugin_dirs", "")) {
+            const std::filesystem::path base = std::filesystem::path(file_).parent_path();
+            for (size_t i = 0; i < dirs->size(); ++i) {
+                const json& d = (*dirs)[i];
+                if (!d.is_string() || d.get<std::string>().empty()) {
+                    error("/plugin_dirs/" + std::to_string(i), "a plugin folder must be a non-empty string, got " + d.dump());
+                    continue;
+                }
+                std::filesystem::path p = d.get<std::string>();
+                g.plugin_dirs.push_back((p.is_absolute() ? p : base / p).lexically_normal().string());
+            }
+        }
         if (root.contains("version")) {
             const json& v = root["version"];
             if (!v.is_number_integer() || v.get<int64_t>() < 1)

@@ -95,6 +95,14 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
     const GraphFile& g = *idx.g;
     auto error = [&](const std::string& ptr, const std::string& msg) { diags.push_back({g.path, ptr, msg}); };
 
+    // Resources bound to outputs of passes whose type is unknown: their writer exists, it just
+    // could not be checked, so "no pass writes it" would only repeat the unknown-type error.
+    std::set<std::string> unknown_written;
+    for (size_t i = 0; i < g.passes.size(); ++i)
+        if (!idx.types[i])
+            for (const auto& [pin, res] : g.passes[i].outputs) unknown_written.insert(res);
+    auto written_by_unknown = [&](int r) { return unknown_written.count(idx.resources[r].name) > 0; };
+
     for (size_t i = 0; i < g.passes.size(); ++i) {
         const PassDecl& p = g.passes[i];
         if (int first = idx.pass_by_name.at(p.name); first != int(i))
@@ -154,7 +162,7 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
                                      "' a history resource and read '" + r.name + "@prev'");
                 continue;
             }
-            if (idx.writer(b.resource) < 0 && !r.persistent) {
+            if (idx.writer(b.resource) < 0 && !r.persistent && !written_by_unknown(b.resource)) {
                 error(b.pointer, "'" + r.name + "' is read but no pass writes it");
                 continue;
             }
@@ -211,7 +219,7 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
         int r = idx.resolve(o.resource, err);
         if (r < 0) {
             if (!err.empty()) error(ptr, err);
-        } else if (idx.writer(r) < 0 && !idx.resources[r].persistent) {
+        } else if (idx.writer(r) < 0 && !idx.resources[r].persistent && !written_by_unknown(r)) {
             error(ptr, "output '" + o.resource + "' is never written by any pass");
         }
     }

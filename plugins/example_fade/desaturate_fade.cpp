@@ -1,0 +1,31 @@
+// A fade strategy in one small plugin: pathlets lose their colour with age. The line kit
+// (pathlet/lines.hpp) draws the pathlets and writes LineAO's G-buffer; this pass adds only a
+// colour hook (desaturate_color.frag) and the parameters it reads.
+#include <pathlet/lines.hpp>
+#include <pathlet/plugin.hpp>
+
+namespace {
+
+class DesaturateFade : public pathlet::lines::GBufferPass {
+public:
+    DesaturateFade() : GBufferPass({.color = "desaturate_color.frag"}) {}
+
+protected:
+    void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& prog) override {
+        const pathlet::Params& p = ctx.params();
+        prog.set("u_start", p.f("start"));
+        prog.set("u_grey", p.v3("grey"));
+        prog.set("u_dither", p.b("dither") ? 1 : 0);
+    }
+};
+
+}  // namespace
+
+PATHLET_PLUGIN("desaturate_fade", {
+    sink->add(pathlet::lines::gbuffer_pass_type("desaturate_fade",
+                                                "pathlets fade to grey with age (an out-of-tree example fade)")
+                  .param_float("start", 0.3, 0.0, 1.0, "age where the fade begins (0 = the head, 1 = the tail)")
+                  .param_color("grey", {0.75f, 0.75f, 0.75f}, "colour a pathlet's tail fades to")
+                  .param_bool("dither", false, "also fade out by screen-door opacity (the kit dithers alpha)")
+                  .make<DesaturateFade>());
+})

@@ -1,0 +1,98 @@
+#include "frame_capture.hpp"
+
+#include "executor.hpp"
+
+#include <cmath>
+
+namespace pathlet {
+
+Runtime& test_runtime(const std::vector<std::string>& plugin_dirs) {
+    static Runtime* rt = [&] {
+        auto* r = new Runtime;
+        r->load_plugins(plugin_dirs);
+        r->ensure_gl(true);
+        return r;
+    }();
+    return *rt;
+}
+
+namespace {
+// GL rows are bottom-up; Image rows top-down.
+template <class T>
+Image flip_into_image(const std::vector<T>& raw, int w, int h) {
+    Image img;
+    img.width = w;
+    img.height = h;
+    img.channels = 1;
+    img.is_float = true;
+    img.pixels.resize(raw.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) img.at(x, y, 0) = float(raw[size_t(h - 1 - y) * size_t(w) + size_t(x)]);
+    return img;
+}
+}  // namespace
+
+Image read_resource(const Texture& t) {
+    const size_t n = size_t(t.width) * size_t(t.height);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (t.internal_format == GL_DEPTH_COMPONENT24 || t.internal_format == GL_DEPTH_COMPONENT32F) {
+        std::vector<float> raw(n);
+        glGetTextureImage(t.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)), raw.data());
+        return flip_into_image(raw, t.width, t.height);
+    }
+    if (t.internal_format == GL_R32I) {
+        std::vector<GLint> raw(n);
+        glGetTextureImage(t.id, 0, GL_RED_INTEGER, GL_INT, GLsizei(n * sizeof(GLint)), raw.data());
+        Image img = flip_into_image(raw, t.width, t.height);
+        img.is_float = false;
+        return img;
+    }
+    return read_texture(t.id, t.width, t.height, 0, t.internal_format == GL_R32F ? 1 : 4);
+}
+
+Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std::vector<std::string>& names) {
+    opt.time.end = opt.time.start;
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    Frame f;
+    RenderResult res = render(rt, scene, opt, [&](const Executor& ex, size_t) {
+        for (const auto& n : names) f.tex[n] = read_resource(ex.texture(n));
+    });
+    for (const auto& p : res.profiler.passes())
+        for (const auto& [k, v] : p.stats) f.stats[k] = v;
+    return f;
+}
+
+const Scene& helix_bundle_scene() {
+    static const Scene scene = [] {
+        Scene s;
+        Pathlines& pl = s.lines;
+        auto add = [&](auto pos, auto vel) {
+            LineRange r{uint32_t(pl.position.size()), 101};
+            for (int k = 0; k <= 100; ++k) {
+                double t = 0.1 * k;
+                pl.position.push_back(pos(t));
+                pl.velocity.push_back(vel(t));
+                pl.time.push_back(float(t));
+            }
+            pl.lines.push_back(r);
+        };
+        for (int i = 0; i < 40; ++i) {
+            double radius = 1.0 + 0.6 * (i % 4), phase = 2.39996 * i, w = 0.8;
+            double gain = 0.3 + 0.7 * double(i % 7) / 6.0;
+            add([=](double t) { return glm::vec3(4 * t, radius * std::cos(w * t + phase), radius * std::sin(w * t + phase)); },
+                [=](double t) {
+                    double f = gain * (0.6 + 0.4 * std::sin(0.7 * t + i));
+                    return glm::vec3(4 * f, -radius * w * std::sin(w * t + phase) * f, radius * w * std::cos(w * t + phase) * f);
+                });
+        }
+        add([](double t) { return glm::vec3(4 * t, 12 + 0.5 * std::sin(0.5 * t), 0); },
+            [](double t) { return glm::vec3(6, 0.375 * std::cos(0.5 * t), 0); });
+        s.source = "synthetic helix bundle (tests/support)";
+        return s;
+    }();
+    return scene;
+}
+
+}  // namespace pathlet

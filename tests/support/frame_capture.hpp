@@ -1,0 +1,37 @@
+// Render one frame of a graph and read its GPU resources back as Images, for tests that look
+// at intermediate maps (G-buffer colour, depth, line ids) rather than only at captured files.
+#pragma once
+
+#include "image_io.hpp"
+#include "renderer.hpp"
+#include "runtime.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+// Everything a test looks at after one frame: textures by resource name, pass stats.
+struct Frame {
+    std::map<std::string, Image> tex;
+    std::map<std::string, double> stats;  // "<stat>" of every pass (last pass wins on clashes)
+    const Image& operator[](const std::string& n) const { return tex.at(n); }
+};
+
+// One runtime (GL context + plugins from the default search path and `plugin_dirs`) per
+// test binary; leaked on purpose (no GL teardown order at exit).
+Runtime& test_runtime(const std::vector<std::string>& plugin_dirs = {});
+
+// Reads a texture the way it is stored: depth as one float, r32i as one float per pixel,
+// r32f as one channel, everything else as RGBA. Rows top-down like Image.
+Image read_resource(const Texture& t);
+
+// Renders `opt` (time start only, no files) and reads the named resources.
+Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std::vector<std::string>& names);
+
+// The test bundle: 40 helices around the x axis (4 rings, speeds varying per line and in time)
+// and one isolated, gently waving line beside it; times 0..10 s, 101 points per line.
+const Scene& helix_bundle_scene();
+
+}  // namespace pathlet
