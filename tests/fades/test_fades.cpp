@@ -28,11 +28,23 @@ const float kPxPerUnit = 0.5f * float(kSize.y) / (kDist * std::tan(glm::radians(
 
 Runtime& rt() { return test_runtime({PATHLET_TEST_PLUGIN_DIR}); }
 
-std::string scratch(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("pathlet_fades_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return (d / name).string();
+// Per-process scratch folder, removed when the test binary ends.
+fs::path scratch_dir() {
+    static const fs::path d = [] {
+        fs::path p = fs::temp_directory_path() / ("pathlet_fades_" + std::to_string(::getpid()));
+        fs::create_directories(p);
+        struct Cleanup : ::testing::Environment {
+            fs::path dir;
+            explicit Cleanup(fs::path p) : dir(std::move(p)) {}
+            void TearDown() override { fs::remove_all(dir); }
+        };
+        ::testing::AddGlobalTestEnvironment(new Cleanup(p));
+        return p;
+    }();
+    return d;
 }
+
+std::string scratch(const std::string& name) { return (scratch_dir() / name).string(); }
 
 const std::string& camera_file() {
     static const std::string path = [] {
