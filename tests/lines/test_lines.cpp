@@ -4,6 +4,7 @@
 // `lines` (lower case) so that `ctest -R lines` selects it.
 #include "camera.hpp"
 #include "executor.hpp"
+#include "frame_capture.hpp"
 #include "golden.hpp"
 #include "image_io.hpp"
 #include "renderer.hpp"
@@ -30,86 +31,10 @@ const glm::ivec2 kSize{160, 120};
 const std::string kGraphs = std::string(PATHLET_SOURCE_DIR) + "/graphs/";
 const std::string kGoldens = std::string(PATHLET_TEST_SOURCE_DIR) + "/goldens/";
 
-// A bundle of 40 helices around the x axis (4 rings, speeds varying per line and in time)
-// and one isolated, gently waving line beside it; times 0..10 s, 101 points per line.
-const Scene& test_scene() {
-    static const Scene scene = [] {
-        Scene s;
-        Pathlines& pl = s.lines;
-        auto add = [&](auto pos, auto vel) {
-            LineRange r{uint32_t(pl.position.size()), 101};
-            for (int k = 0; k <= 100; ++k) {
-                double t = 0.1 * k;
-                pl.position.push_back(pos(t));
-                pl.velocity.push_back(vel(t));
-                pl.time.push_back(float(t));
-            }
-            pl.lines.push_back(r);
-        };
-        for (int i = 0; i < 40; ++i) {
-            double radius = 1.0 + 0.6 * (i % 4), phase = 2.39996 * i, w = 0.8;
-            double gain = 0.3 + 0.7 * double(i % 7) / 6.0;
-            add([=](double t) { return glm::vec3(4 * t, radius * std::cos(w * t + phase), radius * std::sin(w * t + phase)); },
-                [=](double t) {
-                    double f = gain * (0.6 + 0.4 * std::sin(0.7 * t + i));
-                    return glm::vec3(4 * f, -radius * w * std::sin(w * t + phase) * f, radius * w * std::cos(w * t + phase) * f);
-                });
-        }
-        add([](double t) { return glm::vec3(4 * t, 12 + 0.5 * std::sin(0.5 * t), 0); },
-            [](double t) { return glm::vec3(6, 0.375 * std::cos(0.5 * t), 0); });
-        s.source = "test_lines synthetic bundle";
-        return s;
-    }();
-    return scene;
-}
+// The shared test bundle (tests/support/frame_capture.hpp): 40 helices and an isolated line.
+const Scene& test_scene() { return helix_bundle_scene(); }
 
-Runtime& runtime() {
-    // One context and registry for the whole binary; leaked on purpose (no GL teardown order).
-    static Runtime* rt = [] {
-        auto* r = new Runtime;
-        r->load_plugins({});
-        r->ensure_gl(true);
-        return r;
-    }();
-    return *rt;
-}
-
-// Everything a test looks at after one frame: textures by resource name, pass stats.
-struct Frame {
-    std::map<std::string, Image> tex;
-    std::map<std::string, double> stats;
-    Camera camera;
-    const Image& operator[](const std::string& n) const { return tex.at(n); }
-};
-
-Image read_depth(const Texture& t) {
-    Image img;
-    img.width = t.width;
-    img.height = t.height;
-    img.channels = 1;
-    img.is_float = true;
-    std::vector<float> raw(size_t(t.width) * size_t(t.height));
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(t.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
-    img.pixels.resize(raw.size());
-    for (int y = 0; y < t.height; ++y)  // GL rows are bottom-up
-        for (int x = 0; x < t.width; ++x) img.at(x, y, 0) = raw[size_t(t.height - 1 - y) * size_t(t.width) + size_t(x)];
-    return img;
-}
-
-Image read_int(const Texture& t) {
-    Image img;
-    img.width = t.width;
-    img.height = t.height;
-    img.channels = 1;
-    std::vector<GLint> raw(size_t(t.width) * size_t(t.height));
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(t.id, 0, GL_RED_INTEGER, GL_INT, GLsizei(raw.size() * sizeof(GLint)), raw.data());
-    img.pixels.resize(raw.size());
-    for (int y = 0; y < t.height; ++y)
-        for (int x = 0; x < t.width; ++x) img.at(x, y, 0) = float(raw[size_t(t.height - 1 - y) * size_t(t.width) + size_t(x)]);
-    return img;
-}
+Runtime& runtime() { return test_runtime(); }
 
 Frame render_frame(const std::string& graph, double t, std::vector<std::string> sets, std::vector<std::string> names,
                    const Scene& scene = test_scene(), glm::ivec2 size = kSize) {
@@ -117,23 +42,8 @@ Frame render_frame(const std::string& graph, double t, std::vector<std::string> 
     opt.graph_path = kGraphs + graph;
     opt.sets = std::move(sets);
     opt.size = size;
-    opt.time.start = opt.time.end = t;
-    opt.warmup = 0;
-    opt.write_images = false;
-    opt.quiet = true;
-    Frame f;
-    RenderResult res = render(runtime(), scene, opt, [&](const Executor& ex, size_t) {
-        for (const auto& n : names) {
-            Texture tx = ex.texture(n);
-            if (tx.internal_format == GL_DEPTH_COMPONENT24) f.tex[n] = read_depth(tx);
-            else if (tx.internal_format == GL_R32I) f.tex[n] = read_int(tx);
-            else f.tex[n] = read_texture(tx.id, tx.width, tx.height, 0, tx.internal_format == GL_R32F ? 1 : 4);
-        }
-    });
-    for (const auto& p : res.profiler.passes())
-        for (const auto& [k, v] : p.stats) f.stats[k] = v;
-    f.camera = frame_bounds(scene.bounds(), size);
-    return f;
+    opt.time.start = t;
+    return pathlet::render_frame(runtime(), scene, opt, names);
 }
 
 const std::vector<std::string> kGbuf{"color", "normal_depth", "zoom", "depth"};

@@ -61,6 +61,7 @@ Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std
     });
     for (const auto& p : res.profiler.passes())
         for (const auto& [k, v] : p.stats) f.stats[k] = v;
+    if (opt.camera_path.empty()) f.camera = frame_bounds(scene.bounds(), opt.size);
     return f;
 }
 

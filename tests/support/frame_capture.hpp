@@ -2,6 +2,7 @@
 // at intermediate maps (G-buffer colour, depth, line ids) rather than only at captured files.
 #pragma once
 
+#include "camera.hpp"
 #include "image_io.hpp"
 #include "renderer.hpp"
 #include "runtime.hpp"
@@ -16,6 +17,7 @@ namespace pathlet {
 struct Frame {
     std::map<std::string, Image> tex;
     std::map<std::string, double> stats;  // "<stat>" of every pass (last pass wins on clashes)
+    Camera camera;                        // the framing camera (when no camera path was given)
     const Image& operator[](const std::string& n) const { return tex.at(n); }
 };
 
