@@ -215,7 +215,7 @@ TEST(GeometricFade, NoPixelOutsideTheUntaperedQuad) {
     // The quads are not planar (each end faces the eye), so a narrower quad's two triangles
     // may cross the wider one's diagonal by a fraction of a pixel: a tapered pixel must lie on
     // the full quad or touch it, and almost all must lie on it.
-    Frame tapered = render("fade_only.json", {"fade.curve=round"}, 7.0);
+    Frame tapered = render("fade_only.json", {"fade.fade_curve=round"}, 7.0);
     Frame full = render("fade_only.json", {"fade.tail_fade=0", "fade.head_fade=0"}, 7.0);
     const Image &a = tapered["color"], &b = full["color"];
     auto on_full = [&](int x, int y) { return x >= 0 && y >= 0 && x < b.width && y < b.height && covered(b, x, y); };

@@ -79,6 +79,25 @@ private:
     size_t capacity_ = 0;
 };
 
+// The end fade of a pathlet (shaders/line_fade.glsl: float line_end_fade(LinePoint)), shared
+// by every fade strategy: parameters tail_fade, head_fade, fade_measure (time | arc_length),
+// fade_curve (linear | smooth | round) and fade_floor, declared once here. In arc-length mode
+// the lengths are fractions of a typical pathlet (median speed x window), so the same values
+// read alike in both modes while every pathlet gets the same fade length on screen.
+PassTypeBuilder& declare_fade_params(PassTypeBuilder& b, double tail_fade, double head_fade,
+                                     const std::string& what_fades);
+class EndFade {
+public:
+    // Call from setup(): measures the typical pathlet length of the scene for the window.
+    void setup(PassContext& ctx);
+    // Sets line_fade.glsl's uniforms on `prog`.
+    void set_uniforms(PassContext& ctx, const ShaderProgram& prog) const;
+    float typical_length() const { return reference_; }
+
+private:
+    float reference_ = 1.0f;
+};
+
 // Clears the bound framebuffer's colour attachment `index` / depth, whatever the masks were.
 void clear_color(int index, glm::vec4 value);
 void clear_color_int(int index, glm::ivec4 value);
