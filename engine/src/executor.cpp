@@ -57,6 +57,25 @@ Buffer PassContext::buffer(const std::string& pin) const {
     return ph.buf;
 }
 
+Buffer PassContext::grow_buffer(const std::string& pin, size_t bytes) {
+    const Binding* b = impl_->binding(pin);
+    if (!b) impl_->unbound(pin, "buffer");
+    if (b->previous) throw PassError("pass '" + impl_->pass().name + "' cannot grow last frame's '" + pin + "'");
+    auto& ph = const_cast<Executor::Physical&>(impl_->exec->physical(b->resource, false));
+    if (!ph.buf) impl_->unbound(pin, "buffer (it is bound to a texture)");
+    if (ph.buf.bytes >= bytes) return ph.buf;
+    // A new, larger store: GL buffer storage is immutable. The content is not kept (a pass
+    // grows a buffer it is about to refill); every pass that reads it sees the new one.
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    std::string label = impl_->exec->cg_.resources[size_t(b->resource)].name + " (grown)";
+    glObjectLabel(GL_BUFFER, id, -1, label.c_str());
+    glDeleteBuffers(1, &ph.buf.id);
+    ph.buf = {id, bytes};
+    return ph.buf;
+}
+
 const GpuScene& PassContext::scene() const { return impl_->exec->scene_; }
 
 ShaderProgram& PassContext::program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {

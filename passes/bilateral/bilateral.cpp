@@ -6,12 +6,17 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 namespace {
 
 class Bilateral : public pathlet::Pass {
 public:
-    void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "bilateral.frag"}); }
+    void setup(pathlet::PassContext& ctx) override {
+        write_ao_ = ctx.connected("ao_smooth");  // optional: the smoothed AO alone, for per-fragment use
+        prog_ = &ctx.program({"fullscreen.vert", "bilateral.frag"},
+                             write_ao_ ? std::vector<std::string>{"WRITE_AO"} : std::vector<std::string>{});
+    }
 
     void execute(pathlet::PassContext& ctx) override {
         const auto& p = ctx.params();
@@ -39,6 +44,10 @@ public:
             prog_->set("u_step", glm::ivec2(0, 0));
         }
         prog_->set("u_multiply", 1);
+        if (write_ao_) {
+            const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // background: unoccluded
+            glClearTexImage(ctx.texture("ao_smooth").id, 0, GL_RGBA, GL_FLOAT, one);
+        }
         draw(ctx, "final", true);
         for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
     }
@@ -53,15 +62,20 @@ private:
             if (copy_background)
                 glCopyImageSubData(color.id, GL_TEXTURE_2D, 0, 0, 0, 0, target.id, GL_TEXTURE_2D, 0, 0, 0, 0,
                                    target.width, target.height, 1);
-            ctx.bind_framebuffer({out}, "depth");
+            ctx.bind_framebuffer(targets(out), "depth");
             ctx.draw_fullscreen_on_geometry(*prog_);
         } else {
             glDisable(GL_DEPTH_TEST);
-            ctx.bind_framebuffer({out});
+            ctx.bind_framebuffer(targets(out));
             ctx.draw_fullscreen();
         }
     }
+    std::vector<std::string> targets(const std::string& out) const {
+        if (out == "final" && write_ao_) return {out, "ao_smooth"};
+        return {out};
+    }
     pathlet::ShaderProgram* prog_ = nullptr;
+    bool write_ao_ = false;
 };
 
 pathlet::PassTypeInfo bilateral_type() {
@@ -82,6 +96,8 @@ pathlet::PassTypeInfo bilateral_type() {
         .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped", true)
         .output_texture("tmp", "r16f", "separable mode: the horizontally filtered AO (an engine-pooled transient)")
         .output_texture("final", "rgba8", "colour x smoothed AO")
+        .output_texture("ao_smooth", "r16f", "the smoothed AO alone, 1 on background (bind it to get it)", 1, 1.0f,
+                        true)
         .make<Bilateral>();
 }
 

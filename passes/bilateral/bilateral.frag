@@ -6,6 +6,9 @@
 #include "lineao_common.glsl"
 
 layout(location = 0) out vec4 o_color;
+#ifdef WRITE_AO
+layout(location = 1) out float o_ao;  // the smoothed AO alone (last pass), for per-fragment use
+#endif
 layout(binding = 0) uniform sampler2D u_ao;
 layout(binding = 1) uniform sampler2D u_nd;
 layout(binding = 2) uniform sampler2D u_color;
@@ -22,6 +25,9 @@ void main() {
     vec4 c = texelFetch(u_color, p, 0);
     if (c.a == 0.0) {  // background: exactly the colour pass's pixel
         o_color = c;
+#ifdef WRITE_AO
+        o_ao = 1.0;
+#endif
         return;
     }
     vec4 nd = texelFetch(u_nd, p, 0);
@@ -51,4 +57,7 @@ void main() {
         if (wsum > 1e-6) ao = sum / wsum;  // the centre always has weight 1 unless its normal is 0
     }
     o_color = u_multiply ? vec4(c.rgb * ao, c.a) : vec4(ao);
+#ifdef WRITE_AO
+    o_ao = ao;
+#endif
 }

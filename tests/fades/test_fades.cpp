@@ -22,9 +22,8 @@ namespace {
 const std::string kSrc = PATHLET_SOURCE_DIR;
 const std::string kHere = PATHLET_TEST_SOURCE_DIR;
 const glm::ivec2 kSize{400, 100};
-// Camera: looking down -z at (5, 2, 0) from 60 units, fovy 20 degrees, +y up: x to the right.
-constexpr float kDist = 60.0f, kFov = 20.0f;
-const float kPxPerUnit = 0.5f * float(kSize.y) / (kDist * std::tan(glm::radians(kFov * 0.5f)));
+// The square-on camera of tests/support: x to the right, kPxPerUnit pixels per unit at z = 0.
+const float kPxPerUnit = square_on_pixels_per_unit(kSize.y);
 
 Runtime& rt() { return test_runtime({PATHLET_TEST_PLUGIN_DIR}); }
 
@@ -47,35 +46,11 @@ fs::path scratch_dir() {
 std::string scratch(const std::string& name) { return (scratch_dir() / name).string(); }
 
 const std::string& camera_file() {
-    static const std::string path = [] {
-        std::string p = scratch("camera.json");
-        std::ofstream(p) << R"({"keyframes": [{"time": 0, "eye": [5, 2, 60], "target": [5, 2, 0], "up": [0, 1, 0], "fov": 20}]})";
-        return p;
-    }();
+    static const std::string path = write_square_on_camera(scratch("camera.json"));
     return path;
 }
 
-// x(t) = x0 + speed * t on row y, t in 0..10 s.
-const Scene& two_speeds() {
-    static const Scene scene = [] {
-        Scene s;
-        auto add = [&](float x0, float speed, float y) {
-            LineRange r{uint32_t(s.lines.position.size()), 201};
-            for (int k = 0; k <= 200; ++k) {
-                float t = 0.05f * float(k);
-                s.lines.position.push_back({x0 + speed * t, y, 0.0f});
-                s.lines.velocity.push_back({speed, 0.0f, 0.0f});
-                s.lines.time.push_back(t);
-            }
-            s.lines.lines.push_back(r);
-        };
-        add(-15.0f, 4.0f, 0.0f);  // fast: 40 units long
-        add(0.0f, 1.0f, 4.0f);    // slow: 10 units long
-        s.source = "two straight pathlets, fast and slow";
-        return s;
-    }();
-    return scene;
-}
+const Scene& two_speeds() { return two_speed_lines_scene(); }
 
 float column_x(int col) { return (float(col) + 0.5f - 0.5f * float(kSize.x)) / kPxPerUnit + 5.0f; }
 

@@ -3,6 +3,7 @@
 #include "executor.hpp"
 
 #include <cmath>
+#include <fstream>
 
 namespace pathlet {
 
@@ -95,5 +96,33 @@ const Scene& helix_bundle_scene() {
     }();
     return scene;
 }
+
+const Scene& two_speed_lines_scene() {
+    static const Scene scene = [] {
+        Scene s;
+        auto add = [&](float x0, float speed, float y) {
+            LineRange r{uint32_t(s.lines.position.size()), 201};
+            for (int k = 0; k <= 200; ++k) {
+                float t = 0.05f * float(k);
+                s.lines.position.push_back({x0 + speed * t, y, 0.0f});
+                s.lines.velocity.push_back({speed, 0.0f, 0.0f});
+                s.lines.time.push_back(t);
+            }
+            s.lines.lines.push_back(r);
+        };
+        add(-15.0f, 4.0f, 0.0f);
+        add(0.0f, 1.0f, 4.0f);
+        s.source = "two straight pathlets, fast and slow (tests/support)";
+        return s;
+    }();
+    return scene;
+}
+
+std::string write_square_on_camera(const std::string& path) {
+    std::ofstream(path) << R"({"keyframes": [{"time": 0, "eye": [5, 2, 60], "target": [5, 2, 0], "up": [0, 1, 0], "fov": 20}]})";
+    return path;
+}
+
+float square_on_pixels_per_unit(int height) { return 0.5f * float(height) / (60.0f * std::tan(glm::radians(10.0f))); }
 
 }  // namespace pathlet

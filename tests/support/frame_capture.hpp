@@ -36,4 +36,13 @@ Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std
 // and one isolated, gently waving line beside it; times 0..10 s, 101 points per line.
 const Scene& helix_bundle_scene();
 
+// Two straight pathlets, times 0..10 s (201 points each): a fast one, x = -15 + 4t on y = 0
+// (40 units long), and a slow one, x = t on y = 4 (10 units long).
+const Scene& two_speed_lines_scene();
+// Writes a camera path that looks down -z at (5, 2, 0) from 60 units with fovy 20 degrees and
+// +y up, so data x runs to the right; returns `path`.
+std::string write_square_on_camera(const std::string& path);
+// Pixels per world unit at z = 0 for that camera and an image `height` pixels high.
+float square_on_pixels_per_unit(int height);
+
 }  // namespace pathlet

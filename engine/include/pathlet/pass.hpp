@@ -166,6 +166,10 @@ public:
     bool connected(const std::string& pin) const;   // optional inputs may be unconnected
     Texture texture(const std::string& pin) const;  // throws naming the pass and pin when unbound
     Buffer buffer(const std::string& pin) const;
+    // Makes the buffer bound to an output pin at least `bytes` large (a new store, content not
+    // kept), for passes whose need is known only at run time (e.g. OIT node storage). Throws
+    // GL out-of-memory as a PassError like any GL error.
+    Buffer grow_buffer(const std::string& pin, size_t bytes);
 
     const GpuScene& scene() const;
     // Compiles (once, cached) a program from shader files found on the shader search path

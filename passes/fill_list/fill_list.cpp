@@ -1,0 +1,143 @@
+// fill_list: variant 2's second pass (seed §III.c). Rasterises the pathlets of the time window
+// through the line kit into per-pixel linked lists, with opacity ramping from 0 at the tail to
+// full and back to 0 at the head (the kit's end fade). Colour writes are masked as in the seed:
+// nothing goes to a framebuffer, only to the lists.
+//
+// Overflow is never silent: after the draw the node counter is read back and compared with the
+// capacity. On overflow the buffer grows (x1.25 the count, within max_memory_mb and the GL
+// buffer-texture limit) and the frame's lists are rebuilt; the event goes to the log and to the
+// timing report (stats). If even the cap is too small, the frame says how many fragments it lost.
+#include <pathlet/lines.hpp>
+#include <pathlet/oit.hpp>
+#include <pathlet/plugin.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace {
+
+namespace lines = pathlet::lines;
+namespace oit = pathlet::oit;
+
+class FillList : public pathlet::Pass {
+public:
+    ~FillList() override {
+        if (view_) glDeleteTextures(1, &view_);
+        if (fbo_) glDeleteFramebuffers(1, &fbo_);
+    }
+
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &lines::program(ctx, {"fill_list.frag"});
+        fade_.setup(ctx);
+        GLint max_texels = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+        const size_t cap_bytes = size_t(ctx.params().f("max_memory_mb") * 1024.0 * 1024.0);
+        max_nodes_ = std::max<size_t>(1, std::min(size_t(max_texels), cap_bytes / oit::kNodeBytes));
+        // Rasterise without attachments: a framebuffer that only has a size.
+        glm::ivec2 size = ctx.output_size();
+        if (!fbo_) glCreateFramebuffers(1, &fbo_);
+        glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x);
+        glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y);
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const glm::ivec2 size = ctx.output_size();
+        const size_t pixels = size_t(size.x) * size_t(size.y);
+        const size_t wanted = std::min(max_nodes_, size_t(std::ceil(ctx.params().f("nodes_per_pixel") * double(pixels))));
+        size_t capacity = ensure_capacity(ctx, std::max<size_t>(wanted, 1));
+        GLuint count = draw(ctx, capacity);
+        int events = 0;
+        if (count > capacity && capacity < max_nodes_) {
+            ++events;
+            ++events_total_;
+            const size_t grown = ensure_capacity(ctx, std::min(max_nodes_, size_t(double(count) * 1.25) + 1));
+            std::fprintf(stderr,
+                         "%s: node buffer overflow in frame %llu: %u fragments for %zu nodes; grown to %zu nodes "
+                         "(%.1f MiB) and the frame re-rendered\n",
+                         ctx.pass_name().c_str(), (unsigned long long)ctx.frame_index(), count, capacity, grown,
+                         double(grown * oit::kNodeBytes) / 1048576.0);
+            capacity = grown;
+            oit::clear_lists(ctx.texture("heads").id, ctx.buffer("counter").id);
+            count = draw(ctx, capacity);
+        }
+        const size_t dropped = count > capacity ? count - capacity : 0;
+        if (dropped)
+            std::fprintf(stderr,
+                         "%s: frame %llu DROPS %zu of %u fragments: the node buffer is at its cap (%zu nodes, "
+                         "max_memory_mb = %.0f); raise max_memory_mb or shorten the window\n",
+                         ctx.pass_name().c_str(), (unsigned long long)ctx.frame_index(), dropped, count, capacity,
+                         ctx.params().f("max_memory_mb"));
+        ctx.stat("nodes", double(count));
+        ctx.stat("capacity_nodes", double(capacity));
+        ctx.stat("node_memory_mib", double(capacity * oit::kNodeBytes) / 1048576.0);
+        ctx.stat("overflow_events", double(events));
+        ctx.stat("overflow_events_total", double(events_total_));
+        ctx.stat("dropped_fragments", double(dropped));
+    }
+
+private:
+    // Grows the node buffer to hold `nodes` (never shrinks) and points the buffer texture at it.
+    size_t ensure_capacity(pathlet::PassContext& ctx, size_t nodes) {
+        pathlet::Buffer b = ctx.grow_buffer("nodes", nodes * oit::kNodeBytes);
+        if (b.id != viewed_) {
+            if (view_) glDeleteTextures(1, &view_);
+            glCreateTextures(GL_TEXTURE_BUFFER, 1, &view_);
+            glTextureBuffer(view_, GL_RGBA32UI, b.id);
+            viewed_ = b.id;
+        }
+        return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
+    }
+
+    // Appends the window's fragments to the lists; returns the counter (may exceed capacity).
+    GLuint draw(pathlet::PassContext& ctx, size_t capacity) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glm::ivec2 size = ctx.output_size();
+        glViewport(0, 0, size.x, size.y);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
+        GLuint counter = ctx.buffer("counter").id;
+        glBindImageTexture(0, ctx.texture("heads").id, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+        glBindImageTexture(1, view_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, oit::kCounterBinding, counter);
+        prog_->use();
+        prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
+        fade_.set_uniforms(ctx, *prog_);
+        drawer_.draw(ctx, *prog_);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                        GL_SHADER_STORAGE_BARRIER_BIT);
+        GLuint count = 0;
+        glGetNamedBufferSubData(counter, 0, sizeof(count), &count);  // waits for the draw
+        return count;
+    }
+
+    pathlet::ShaderProgram* prog_ = nullptr;
+    lines::Drawer drawer_;
+    lines::EndFade fade_;
+    GLuint fbo_ = 0, view_ = 0, viewed_ = 0;
+    size_t max_nodes_ = 1;
+    long long events_total_ = 0;
+};
+
+pathlet::PassTypeInfo fill_list_type() {
+    pathlet::PassTypeBuilder b("fill_list",
+                               "variant 2: pathlet fragments into per-pixel linked lists (OIT), opacity faded at "
+                               "both ends; the node buffer grows on overflow");
+    lines::declare_params(b);
+    lines::declare_fade_params(b, 0.5, 0.15, "opacity")
+        .param_float("nodes_per_pixel", 4.0, 0.01, 1024.0,
+                     "initial node capacity per output pixel (16 bytes a node); grown automatically on overflow")
+        .param_float("max_memory_mb", 1024.0, 0.01, 65536.0,
+                     "cap for the node buffer in MiB (also capped by GL_MAX_TEXTURE_BUFFER_SIZE nodes); a frame "
+                     "that needs more drops fragments and says so")
+        .input_texture("heads", "r32ui", "per-pixel list heads, cleared by clear_list")
+        .input_buffer("counter", "node counter, cleared by clear_list")
+        .output_buffer("nodes", oit::kNodeBytes, 0,
+                       "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
+                       "overflow");
+    return b.make<FillList>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("fill_list", { sink->add(fill_list_type()); })

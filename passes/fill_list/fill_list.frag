@@ -1,0 +1,27 @@
+#version 450 core
+// fill_list's fragment stage: every fragment of a pathlet quad becomes a node of its pixel's
+// linked list (seed §III.b: take a node index from the counter, swap it into the head, link
+// the old head), with its colour (speed map, colour hook, halo), its opacity faded at both
+// ends of the pathlet (shaders/line_fade.glsl), its linear depth and its line id.
+#define LINE_STAGE_FRAGMENT
+#include "line_common.glsl"
+#include "line_fade.glsl"
+#include "oit_list.glsl"
+
+vec4 line_color_hook(vec4 rgba, LinePoint p);  // the kit's hook (default: the colour as it is)
+
+layout(binding = 0, r32ui) uniform coherent uimage2D u_heads;
+layout(binding = 1, rgba32ui) uniform writeonly uimageBuffer u_nodes;
+layout(std430, binding = OIT_COUNTER_BINDING) buffer OitCounter { uint oit_count; };
+uniform int u_capacity;  // nodes that fit; beyond it fragments are only counted
+
+void main() {
+    LineFrag f = line_fragment();
+    vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
+    float a = c.a * line_end_fade(f.point);
+    if (a < 0.5 / 255.0) discard;  // invisible: no node
+    uint i = atomicAdd(oit_count, 1u);
+    if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room
+    uint next = imageAtomicExchange(u_heads, ivec2(gl_FragCoord.xy), i);
+    imageStore(u_nodes, int(i), oit_pack(vec4(line_halo_tint(c.rgb, f), a), f.depth01, next, f.point.line_id));
+}

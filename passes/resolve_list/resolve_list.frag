@@ -1,0 +1,97 @@
+#version 450 core
+// resolve_list: per pixel, the list's fragments sorted by depth (ties by line id, so the result
+// does not depend on the rasterisation order), composited front to back with early termination
+// at alpha >= 0.99, over the background. The K nearest fragments are kept (a longer list drops
+// its farthest ones and is counted). With an AO map of an opaque core (variant2_oit_ao), AO is
+// applied per fragment: only to fragments at the core's depth; faded fragments in front of the
+// core and fragments behind it stay unoccluded.
+#include "oit_list.glsl"
+
+#define K_MAX 64
+
+layout(binding = 0, r32ui) uniform readonly uimage2D u_heads;
+layout(binding = 1) uniform usamplerBuffer u_nodes;
+layout(binding = 2) uniform sampler2D u_ao;    // smoothed AO of the core (when u_use_ao)
+layout(binding = 3) uniform sampler2D u_core;  // the core's normal + linear depth (w)
+layout(std430, binding = 9) buffer OitResolveStats { uint peak_nodes; uint truncated_pixels; };
+uniform int u_max_fragments;  // K <= K_MAX
+uniform int u_use_ao;
+uniform float u_ao_tolerance;  // linear depth within which a fragment counts as the core surface
+uniform vec3 u_background;
+
+layout(location = 0) out vec4 o_color;
+#ifdef UNLIT_LOCATION
+layout(location = UNLIT_LOCATION) out vec4 o_unlit;
+#endif
+#ifdef FRONT_ALPHA_LOCATION
+layout(location = FRONT_ALPHA_LOCATION) out float o_front_alpha;
+#endif
+
+// Order by depth, then line id, then colour: identical keys are identical nodes, so the result
+// never depends on the order the rasteriser appended them.
+bool nearer(float d, uint id, uint c, float d2, uint id2, uint c2) {
+    return d < d2 || (d == d2 && (id < id2 || (id == id2 && c < c2)));
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    uint i = imageLoad(u_heads, p).r;
+    if (i == OIT_END) {  // no fragment: the background (most pixels leave here)
+        o_color = vec4(u_background, 0.0);
+#ifdef UNLIT_LOCATION
+        o_unlit = o_color;
+#endif
+#ifdef FRONT_ALPHA_LOCATION
+        o_front_alpha = 0.0;
+#endif
+        return;
+    }
+    float dep[K_MAX];
+    uint col[K_MAX], lid[K_MAX];
+    for (int k = 0; k < K_MAX; ++k) dep[k] = 1.0, col[k] = 0u, lid[k] = 0u;
+    int n = 0;
+    uint len = 0u;
+    const int K = clamp(u_max_fragments, 1, K_MAX);
+    while (i != OIT_END && len < 0x1000000u) {  // the bound only guards against a corrupt list
+        uvec4 node = texelFetch(u_nodes, int(i));
+        ++len;
+        i = oit_next(node);
+        float d = oit_depth(node);
+        uint id = oit_line(node);
+        if (n == K && !nearer(d, id, node.x, dep[K - 1], lid[K - 1], col[K - 1])) continue;  // beyond the K kept
+        int j = n < K ? n++ : K - 1;
+        for (; j > 0 && nearer(d, id, node.x, dep[j - 1], lid[j - 1], col[j - 1]); --j) {
+            dep[j] = dep[j - 1];
+            col[j] = col[j - 1];
+            lid[j] = lid[j - 1];
+        }
+        dep[j] = d;
+        col[j] = node.x;
+        lid[j] = id;
+    }
+    if (len > 0u) {
+        atomicMax(peak_nodes, len);
+        if (len > uint(K)) atomicAdd(truncated_pixels, 1u);
+    }
+    float core = u_use_ao != 0 ? texelFetch(u_core, p, 0).w : 1.0;
+    float ao = u_use_ao != 0 ? texelFetch(u_ao, p, 0).r : 1.0;
+    vec3 lit = vec3(0.0), unlit = vec3(0.0);
+    float alpha = 0.0;
+    for (int k = 0; k < n && alpha < 0.99; ++k) {
+        vec4 c = unpackUnorm4x8(col[k]);
+        float w = (1.0 - alpha) * c.a;
+        float occlusion = abs(dep[k] - core) <= u_ao_tolerance ? ao : 1.0;
+        lit += w * c.rgb * occlusion;
+        unlit += w * c.rgb;
+        alpha += w;
+    }
+    // Alpha 1 wherever a fragment landed: bilateral (variant2_oit) treats it as geometry.
+    float covered = n > 0 ? 1.0 : 0.0;
+    o_color = vec4(lit + (1.0 - alpha) * u_background, covered);
+#ifdef UNLIT_LOCATION
+    o_unlit = vec4(unlit + (1.0 - alpha) * u_background, covered);
+#endif
+#ifdef FRONT_ALPHA_LOCATION
+    o_front_alpha = n > 0 ? unpackUnorm4x8(col[0]).a : 0.0;
+#endif
+}

@@ -1,0 +1,199 @@
+// Variant 2 (OIT through per-pixel linked lists) on real GL (llvmpipe): the resolve against a
+// CPU blend of the very fragments in the lists, the opacity ramp, determinism, overflow
+// detection and recovery, goldens, and the artefact of the faithful graph against the better one.
+#include "oit_metric.hpp"
+
+#include "executor.hpp"
+#include "golden.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace pathlet;
+
+namespace {
+
+const std::string kSrc = PATHLET_SOURCE_DIR;
+const std::string kHere = PATHLET_TEST_SOURCE_DIR;
+const glm::ivec2 kSmall{160, 120};
+
+const std::string& scratch() {
+    static const std::string d = [] {
+        fs::path p = fs::temp_directory_path() / ("pathlet_oit_" + std::to_string(::getpid()));
+        fs::create_directories(p);
+        struct Cleanup : ::testing::Environment {
+            fs::path dir;
+            explicit Cleanup(fs::path p) : dir(std::move(p)) {}
+            void TearDown() override { fs::remove_all(dir); }
+        };
+        ::testing::AddGlobalTestEnvironment(new Cleanup(p));
+        return p.string();
+    }();
+    return d;
+}
+
+Frame render(const std::string& graph, std::vector<std::string> sets, const std::vector<std::string>& names,
+             double t = 6.0, const Scene& scene = helix_bundle_scene(), glm::ivec2 size = kSmall) {
+    RenderOptions opt;
+    opt.graph_path = graph.find('/') == std::string::npos ? kHere + "/graphs/" + graph : graph;
+    opt.sets = std::move(sets);
+    opt.size = size;
+    opt.time.start = t;
+    return render_frame(test_runtime(), scene, opt, names);
+}
+
+// The lists as the GPU left them: heads and nodes, read in the frame callback.
+struct Lists {
+    int width = 0, height = 0;
+    std::vector<GLuint> heads;             // GL rows (bottom-up)
+    std::vector<glm::uvec4> nodes;
+    Image color;                           // resolve_list's output (top-down)
+};
+
+Lists render_lists(std::vector<std::string> sets) {
+    RenderOptions opt;
+    opt.graph_path = kHere + "/graphs/oit_only.json";
+    opt.sets = std::move(sets);
+    opt.size = kSmall;
+    opt.time.start = opt.time.end = 6.0;
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    Lists l;
+    render(test_runtime(), helix_bundle_scene(), opt, [&](const Executor& ex, size_t) {
+        Texture h = ex.texture("heads");
+        l.width = h.width;
+        l.height = h.height;
+        l.heads.resize(size_t(h.width) * size_t(h.height));
+        glGetTextureImage(h.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(l.heads.size() * 4), l.heads.data());
+        Buffer b = ex.buffer("nodes");
+        l.nodes.resize(b.bytes / 16);
+        glGetNamedBufferSubData(b.id, 0, GLsizeiptr(l.nodes.size() * 16), l.nodes.data());
+        l.color = read_resource(ex.texture("color"));
+    });
+    return l;
+}
+
+glm::dvec4 unpack(GLuint c) {
+    return glm::dvec4(c & 255u, (c >> 8) & 255u, (c >> 16) & 255u, c >> 24) / 255.0;
+}
+
+}  // namespace
+
+TEST(Oit, ResolveEqualsACpuBlendOfTheSameFragments) {
+    Lists l = render_lists({});
+    size_t pixels = 0, layered = 0;
+    for (int y = 0; y < l.height; ++y)
+        for (int x = 0; x < l.width; ++x) {
+            std::vector<glm::uvec4> frags;
+            for (GLuint i = l.heads[size_t(y) * size_t(l.width) + size_t(x)]; i != 0xFFFFFFFFu; i = l.nodes.at(i).z)
+                frags.push_back(l.nodes.at(i));
+            if (frags.empty()) continue;
+            ++pixels;
+            layered += frags.size() > 1;
+            // Depth, then line id, then colour; the 32 nearest; front to back until alpha 0.99.
+            std::sort(frags.begin(), frags.end(), [](const glm::uvec4& a, const glm::uvec4& b) {
+                float da, db;
+                std::memcpy(&da, &a.y, 4);
+                std::memcpy(&db, &b.y, 4);
+                return da != db ? da < db : (a.w != b.w ? a.w < b.w : a.x < b.x);
+            });
+            if (frags.size() > 32) frags.resize(32);
+            glm::dvec3 c(0.0);
+            double alpha = 0.0;
+            for (const auto& f : frags) {
+                if (alpha >= 0.99) break;
+                glm::dvec4 rgba = unpack(f.x);
+                double w = (1.0 - alpha) * rgba.a;
+                c += w * glm::dvec3(rgba);
+                alpha += w;
+            }
+            c += (1.0 - alpha) * glm::dvec3(1.0);  // white background
+            const int row = l.height - 1 - y;      // Image rows are top-down
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(l.color.at(x, row, k), c[k], 1.0 / 255 + 1e-6) << "pixel " << x << "," << row << " channel " << k;
+            ASSERT_EQ(l.color.at(x, row, 3), 1.0f);
+        }
+    EXPECT_GT(pixels, 500u);
+    EXPECT_GT(layered, 100u) << "the scene must have overlapping fragments to test the blend";
+}
+
+TEST(Oit, OpacityRampsFromZeroAtTheTailToFullAndBackAtTheHead) {
+    static const std::string camera = write_square_on_camera(scratch() + "/camera.json");
+    RenderOptions opt;
+    opt.graph_path = kHere + "/graphs/oit_only.json";
+    opt.sets = {"window=4", "line_width=1.5", "fill_list.tail_fade=0.5", "fill_list.head_fade=0.25", "fill_list.halo=0"};
+    opt.size = {400, 100};
+    opt.camera_path = camera;
+    opt.time.start = 8.0;  // the fast pathlet spans x = 1..17 (times 4..8)
+    Frame f = render_frame(test_runtime(), two_speed_lines_scene(), opt, {"front_alpha"});
+    const Image& a = f["front_alpha"];
+    const float ppu = square_on_pixels_per_unit(100);
+    auto col_of = [&](float x) { return int((x - 5.0f) * ppu + 200.0f); };
+    auto alpha_at = [&](float x) {  // the largest alpha in the column (the line's centre rows)
+        float m = 0;
+        for (int y = 50; y < 100; ++y) m = std::max(m, a.at(col_of(x), y, 0));
+        return m;
+    };
+    // Age runs from 0 at x = 17 (head) to 1 at x = 1 (tail): the tail ramp covers ages 0.5..1
+    // (x 1..9), the head ramp ages 0..0.25 (x 13..17).
+    EXPECT_LT(alpha_at(1.15f), 0.06f) << "alpha 0 at the tail";
+    EXPECT_NEAR(alpha_at(3.0f), 0.25f, 0.05f);
+    EXPECT_NEAR(alpha_at(5.0f), 0.5f, 0.05f);
+    EXPECT_NEAR(alpha_at(11.0f), 1.0f, 0.01f) << "full in the body";
+    EXPECT_NEAR(alpha_at(15.0f), 0.5f, 0.06f);
+    EXPECT_LT(alpha_at(16.85f), 0.08f) << "back to 0 at the head";
+    EXPECT_FALSE(has_nan(a));
+}
+
+TEST(Oit, OutputIsDeterministicAndFinite) {
+    for (const char* g : {"variant2_oit", "variant2_oit_ao"}) {
+        Frame a = render(kSrc + "/graphs/" + g + ".json", {"line_width=1.2", "window=3"}, {"final"});
+        Frame b = render(kSrc + "/graphs/" + g + ".json", {"line_width=1.2", "window=3"}, {"final"});
+        EXPECT_EQ(a["final"].pixels, b["final"].pixels) << g << ": two runs differ";
+        EXPECT_FALSE(has_nan(a["final"])) << g;
+    }
+}
+
+TEST(Oit, OverflowIsDetectedReportedAndRecovered) {
+    Frame ample = render("oit_only.json", {"fill_list.nodes_per_pixel=64"}, {"color"});
+    Frame tiny = render("oit_only.json", {"fill_list.nodes_per_pixel=0.01"}, {"color"});
+    EXPECT_EQ(ample.stats["overflow_events"], 0.0);
+    EXPECT_EQ(tiny.stats["overflow_events"], 1.0) << "the overflow must be reported";
+    EXPECT_EQ(tiny.stats["dropped_fragments"], 0.0);
+    EXPECT_GT(tiny.stats["capacity_nodes"], tiny.stats["nodes"] - 1) << "grown to hold the frame";
+    EXPECT_EQ(tiny["color"].pixels, ample["color"].pixels) << "the re-rendered frame equals one with room enough";
+}
+
+TEST(Oit, FragmentsBeyondTheMemoryCapAreCountedAsDropped) {
+    Frame capped = render("oit_only.json", {"fill_list.nodes_per_pixel=0.01", "fill_list.max_memory_mb=0.01"}, {"color"});
+    EXPECT_GT(capped.stats["dropped_fragments"], 0.0) << "a frame that loses fragments must say so";
+    EXPECT_LE(capped.stats["capacity_nodes"], 0.01 * 1048576 / 16 + 1);
+}
+
+TEST(Oit, GoldensOfBothGraphs) {
+    for (const char* g : {"variant2_oit", "variant2_oit_ao"}) {
+        Frame f = render(kSrc + "/graphs/" + g + ".json", {"line_width=1.2", "window=3"}, {"final"});
+        EXPECT_TRUE(matches_golden(f["final"], kHere + "/goldens/" + g + ".png")) << g;
+    }
+}
+
+TEST(Oit, BetterGraphDarkensFadedFragmentsFarLessThanTheFaithfulOne) {
+    oit_test::Artefact res[2];
+    int k = 0;
+    for (const char* g : {"variant2_oit", "variant2_oit_ao"}) {
+        oit_test::MetricGraph m = oit_test::metric_graph(kSrc + "/graphs/" + g + ".json", scratch());
+        Frame f = render(m.path, {"line_width=1.2", "window=3", "strength=2"}, {m.final_name, m.unlit_name, m.front_alpha_name});
+        res[k++] = oit_test::measure_artefact(f, m);
+    }
+    ASSERT_GT(res[0].pixels, 50u);
+    EXPECT_GT(res[0].darkening, 0.02) << "the faithful graph shows the study's artefact";
+    EXPECT_LT(res[1].darkening, 0.25 * res[0].darkening)
+        << "faithful " << 255 * res[0].darkening << "/255, better " << 255 * res[1].darkening << "/255";
+}
