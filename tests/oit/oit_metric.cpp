@@ -26,6 +26,9 @@ MetricGraph metric_graph(const std::string& shipped_graph, const std::string& sc
         }
     }
     if (m.unlit_name.empty()) throw std::runtime_error(shipped_graph + ": no resolve_list pass");
+    // Outputs live to the end of the frame; a resource nobody reads could share its texture
+    // with a later one of the same format (pooling) and be overwritten before it is read.
+    for (const std::string& r : {m.front_alpha_name, m.unlit_name}) g["outputs"].push_back({{"resource", r}});
     m.final_name = g["outputs"][0]["resource"];
     g["outputs"][0].erase("capture");
     m.path = (std::filesystem::path(scratch_dir) / (std::filesystem::path(shipped_graph).stem().string() + "_metric.json"))

@@ -1,9 +1,11 @@
+#include "limits.hpp"
 #include "raw_polylines.hpp"
 
 #include "byte_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 namespace pathlet::io {
@@ -130,8 +132,22 @@ namespace {
 
 bool finite3(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
+// A position the data set can keep: finite and within io::max_coordinate(). One huge but
+// finite outlier (3e38) would otherwise overflow the diagonal to inf and make every other
+// point look like a duplicate of its neighbour.
+bool usable(const glm::vec3& p) {
+    const double m = io::max_coordinate();
+    return finite3(p) && std::abs(p.x) <= m && std::abs(p.y) <= m && std::abs(p.z) <= m;
+}
+
+std::string short_number(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", v);
+    return b;
+}
+
 struct Counts {
-    size_t nonfinite_points = 0, nonfinite_lines = 0, split_extra = 0;
+    size_t nonfinite_points = 0, nonfinite_lines = 0, split_extra = 0, outlier_points = 0;
     size_t dup_points = 0, dup_lines = 0, equal_time_points = 0;
     size_t short_lines = 0, short_points = 0, reversed = 0, sorted = 0;
 };
@@ -145,7 +161,7 @@ bool is_clean(const Pathlines& pl, float eps2) {
         if (r.first != expect || r.count < 2) return false;
         expect += r.count;
         for (uint32_t k = r.first; k < r.first + r.count; ++k) {
-            if (!finite3(pl.position[k]) || !std::isfinite(pl.time[k]) || !finite3(pl.velocity[k])) return false;
+            if (!usable(pl.position[k]) || !std::isfinite(pl.time[k]) || !finite3(pl.velocity[k])) return false;
             if (k > r.first) {
                 glm::vec3 d = pl.position[k] - pl.position[k - 1];
                 if (glm::dot(d, d) <= eps2 || !(pl.time[k] > pl.time[k - 1])) return false;
@@ -170,9 +186,12 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
             fail_at(file, "byte 0", "line range beyond the point count");
 
     // Zero-length threshold relative to the data extent: a millionth of the diagonal.
-    Bounds b = pl.bounds();
-    float diag = b.valid() ? glm::length(b.hi - b.lo) : 0.0f;
-    float eps = 1e-6f * diag;
+    // Over usable points only, in double: outliers are dropped below, not measured.
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& p : pl.position)
+        if (usable(p)) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    double diag = hi.x >= lo.x ? glm::length(hi - lo) : 0.0;
+    float eps = float(1e-6 * diag);
     float eps2 = eps * eps;
     if (is_clean(pl, eps2)) return;
 
@@ -225,9 +244,10 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
         bool had_bad = false, had_dup = false;
         size_t pieces = 0;
         for (uint32_t k = r.first; k < r.first + r.count; ++k) {
-            bool ok = finite3(pl.position[k]) && (!has_time || std::isfinite(pl.time[k])) && (!has_vel || finite3(pl.velocity[k]));
+            bool ok = usable(pl.position[k]) && (!has_time || std::isfinite(pl.time[k])) && (!has_vel || finite3(pl.velocity[k]));
             if (ok) { seg.push_back(k); continue; }
-            ++c.nonfinite_points;
+            if (finite3(pl.position[k]) && !usable(pl.position[k])) ++c.outlier_points;  // dropped alike, said apart
+            else ++c.nonfinite_points;
             had_bad = true;
             if (!seg.empty()) { flush(had_dup); ++pieces; }
         }
@@ -242,6 +262,9 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
         w.push_back("dropped " + std::to_string(c.nonfinite_points) + " non-finite (NaN/inf) points in " +
                     std::to_string(c.nonfinite_lines) + " lines" +
                     (c.split_extra ? " (split into " + std::to_string(c.split_extra) + " extra lines)" : ""));
+    if (c.outlier_points)
+        w.push_back("dropped " + std::to_string(c.outlier_points) + " outlying points (a coordinate beyond +-" +
+                    short_number(io::max_coordinate()) + "; PATHLET_MAX_COORDINATE raises the limit)");
     if (c.dup_points)
         w.push_back("dropped " + std::to_string(c.dup_points) + " duplicate consecutive points (zero-length segments) in " +
                     std::to_string(c.dup_lines) + " lines");

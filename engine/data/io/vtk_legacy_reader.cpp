@@ -134,7 +134,12 @@ struct LegacyReader {
                         c.fail(std::string(kind) + " connectivity index " + std::to_string(v) + " is out of range" + kByteOrderHint);
         } else {
             // 4.2: b integers, each cell "k i0 .. ik-1".
-            auto cells = ints(b, ScalarType::I32, kind);
+            auto cells = ints(b, ScalarType::I32, kind);  // b checked against the file's size
+            // Every cell takes at least its count value: a cell count beyond the values is a lie,
+            // caught before it sizes an allocation.
+            if (a > cells.size())
+                c.fail(std::string(kind) + " declares " + std::to_string(a) + " cells but only " +
+                       std::to_string(cells.size()) + " values (counts disagree)");
             offsets.reserve(a + 1);
             offsets.push_back(0);
             conn.reserve(b > a ? b - a : 0);

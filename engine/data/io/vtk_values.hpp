@@ -6,6 +6,7 @@
 #include "byte_reader.hpp"
 #include "scalar_types.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace pathlet::io {
@@ -32,7 +33,11 @@ std::vector<T> read_values(Cursor& c, uint64_t count, ScalarType type, bool bina
         if (!parse_number(t, out[i])) {
             double d;  // integers written as "3.0" by some tools
             if constexpr (std::is_same_v<T, int64_t>) {
-                if (parse_number(t, d) && d == double(int64_t(d))) { out[i] = int64_t(d); continue; }
+                // Range first: casting nan, inf or 1e20 to int64 is undefined behaviour.
+                if (parse_number(t, d) && d >= -9.0e15 && d <= 9.0e15 && d == std::trunc(d)) {
+                    out[i] = int64_t(d);
+                    continue;
+                }
             }
             c.fail(std::string(what) + ": value " + std::to_string(i) + " is '" + std::string(t.substr(0, 40)) +
                    "', not a number (counts disagree with the data?)");

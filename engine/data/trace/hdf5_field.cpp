@@ -1,5 +1,6 @@
 // 4DFlowNet HDF5 layout reader (see field_readers.hpp for the axis mapping).
 #include "field_readers.hpp"
+#include "io/limits.hpp"
 
 #include <hdf5.h>
 
@@ -43,8 +44,14 @@ Dataset read_dataset(hid_t file, const char* name, const std::string& path) {
         n *= size_t(d);
     }
     // Compressed data may legitimately be much smaller than its size, but not absurdly so.
+    // The declared size must be plausible from the bytes stored: uncompressed data holds
+    // 1-8 bytes per element, deflate inflates at most ~1032:1 (io::max_inflate_ratio()).
     const hsize_t stored = H5Dget_storage_size(ds.id);
     if (stored == 0 && n > 1) throw DataError(where + "has no stored data");
+    if (double(n) > double(stored) * io::max_inflate_ratio() + 64.0)
+        throw DataError(where + "declares " + std::to_string(n) + " elements but stores only " + std::to_string(stored) +
+                        " bytes (corrupt header, or beyond PATHLET_MAX_INFLATE_RATIO = " +
+                        std::to_string(int(io::max_inflate_ratio())) + ")");
     out.data.resize(n);
     if (H5Dread(ds.id, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data.data()) < 0)
         throw DataError(where + "cannot read (truncated or not numeric)");

@@ -131,6 +131,7 @@ VelocityField read_vti_field(std::string_view x, const std::string& path) {
     bool appended_b64 = false;
     if (appended_at < x.size()) {
         const auto app = find_tag(x, "AppendedData", appended_at, x.size(), path);
+        if (!app) fail(path, appended_at, "'<AppendedData' is not a complete <AppendedData ...> tag");
         appended_b64 = attr(*app, "encoding") == "base64";
         base = x.find('_', app->end);
         if (base == std::string_view::npos) fail(path, app->end, "no '_' starting the appended data");
@@ -164,8 +165,10 @@ VelocityField read_vti_field(std::string_view x, const std::string& path) {
                 bytes = vti::decode_block(raw, hs, zlib, limit).bytes;
             } else if (format == "appended") {
                 if (base == std::string_view::npos) fail(path, da->begin, "appended array but no <AppendedData>");
-                const size_t off = size_t(std::atoll(attr(*da, "offset").c_str()));
-                if (base + off > x.size()) fail(path, da->begin, "array '" + a.name + "': offset past the end of the file");
+                const long long off_signed = std::atoll(attr(*da, "offset").c_str());
+                if (off_signed < 0) fail(path, da->begin, "array '" + a.name + "': negative offset");
+                const size_t off = size_t(off_signed);
+                if (off > x.size() - base) fail(path, da->begin, "array '" + a.name + "': offset past the end of the file");
                 std::string_view rest = x.substr(base + off);
                 if (appended_b64) rest = rest.substr(0, rest.find("</AppendedData>"));  // text, so safe to search
                 bytes = appended_b64 ? vti::decode_block(vti::base64_decode(rest), hs, zlib, limit).bytes

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <optional>
 
@@ -51,7 +52,9 @@ struct Cursor {
     }
     long integer() {
         const double v = number();
-        if (v != double(long(v))) fail("expected an integer");
+        // Range first: casting nan, inf or 1e20 to an integer is undefined behaviour.
+        if (!(v >= -9.0e15 && v <= 9.0e15) || v != std::trunc(v))
+            fail("expected an integer, got " + std::string(std::isfinite(v) ? "a fraction or a huge number" : "nan/inf"));
         return long(v);
     }
 };
@@ -114,10 +117,14 @@ VelocityField read_vtk_legacy_field(std::string_view bytes, const std::string& p
     VelocityField f;
     f.source = path;
     std::optional<size_t> npoints;
+    bool seen_dims = false;
     std::vector<float> vec;
     while (!c.at_end()) {
         const std::string_view kw = c.token();
         if (kw == "DIMENSIONS") {
+            // Once, before the data: a second one would resize the grid under arrays already read.
+            if (npoints || seen_dims) c.fail("DIMENSIONS given twice, or after POINT_DATA");
+            seen_dims = true;
             for (int a = 0; a < 3; ++a) {
                 const long d = c.integer();
                 if (d < 1 || d > 100000) c.fail("bad dimension " + std::to_string(d));
@@ -128,7 +135,10 @@ VelocityField read_vtk_legacy_field(std::string_view bytes, const std::string& p
         } else if (kw == "ORIGIN") {
             for (int a = 0; a < 3; ++a) f.grid.origin[a] = float(c.number());
         } else if (kw == "POINT_DATA") {
-            npoints = size_t(c.integer());
+            if (npoints) c.fail("POINT_DATA given twice (one grid per file)");
+            const long n = c.integer();
+            if (n < 0) c.fail("negative POINT_DATA count");
+            npoints = size_t(n);
             if (*npoints != f.grid.count()) c.fail("POINT_DATA " + std::to_string(*npoints) + " does not match DIMENSIONS");
         } else if (kw == "SCALARS" || kw == "VECTORS") {
             if (!npoints) c.fail(std::string(kw) + " before POINT_DATA");
@@ -137,7 +147,7 @@ VelocityField read_vtk_legacy_field(std::string_view bytes, const std::string& p
             size_t comps = kw == "VECTORS" ? 3 : 1;
             std::string_view tail = c.rest_of_line();  // optional component count for SCALARS
             if (kw == "SCALARS" && !tail.empty() && tail.find_first_not_of(" \t\r") != std::string_view::npos)
-                comps = size_t(std::max(1, std::atoi(std::string(tail).c_str())));
+                comps = size_t(std::clamp(std::atoi(std::string(tail).c_str()), 1, 4));  // VTK: 1..4
             if (kw == "SCALARS") {
                 if (c.token() != "LOOKUP_TABLE") c.fail("expected LOOKUP_TABLE after SCALARS");
                 c.rest_of_line();

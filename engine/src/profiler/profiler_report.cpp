@@ -122,6 +122,16 @@ std::string Profiler::table(const std::string& title) const {
     }
     out << row("frame", frame, fmt("%9.1f%%", frame.n ? 100.0 : 0.0), frame_cpu_ms());
     out << name_col("fps (median frame)") << fmt("%10.1f", fps(frame)) << "\n";
+    // What passes counted (segments drawn, OIT nodes, overflow events...), mean per frame.
+    bool header = false;
+    for (const PassResult& r : results) {
+        if (r.stats.empty()) continue;
+        if (!header) out << "stats (mean per measured frame):\n", header = true;
+        std::string line = "  " + r.name + ":";
+        for (const auto& [k, v] : r.stats) line += " " + k + " " + fmt("%.6g", v) + ",";
+        line.pop_back();
+        out << line << "\n";
+    }
     return out.str();
 }
 

@@ -1,0 +1,22 @@
+// Caps on what a file may declare, checked before anything is allocated. Each has a
+// documented default and an environment variable for a user with a genuinely large file
+// (README, "Limits on input files").
+#pragma once
+
+namespace pathlet::io {
+
+// Largest uncompressed/compressed size ratio a zlib or deflate stream may claim. Deflate
+// cannot exceed ~1032:1, so the default refuses only impossible headers (decompression
+// bombs, corrupt sizes). PATHLET_MAX_INFLATE_RATIO (>= 1) lowers or raises it.
+double max_inflate_ratio();
+
+// Deepest nesting of arrays/objects accepted in a JSON file (graphs, camera paths,
+// experiments). Deeper input is refused with its file before it is walked recursively.
+// PATHLET_MAX_JSON_DEPTH (>= 8) changes it; default 128.
+int max_json_depth();
+
+// Largest coordinate magnitude a point may have and still be kept (default 1e15 data units):
+// a finite outlier beyond it would overflow the bounding box to inf. PATHLET_MAX_COORDINATE.
+double max_coordinate();
+
+}  // namespace pathlet::io
