@@ -1,5 +1,7 @@
 #include "camera.hpp"
 
+#include "io/limits.hpp"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -73,6 +75,9 @@ glm::vec3 catmull_rom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, fl
 }  // namespace
 
 CameraPath CameraPath::parse(const std::string& text, const std::string& path) {
+    if (io::json_nesting_depth(text, io::max_json_depth()).first_too_deep != size_t(-1))
+        throw DataError(path + ": nesting deeper than " + std::to_string(io::max_json_depth()) +
+                        " levels; a camera path needs three (PATHLET_MAX_JSON_DEPTH raises the cap)");
     json j = json::parse(text, nullptr, false, true);
     if (j.is_discarded()) throw DataError(path + ": not valid JSON");
     if (!j.is_object() || !j.contains("keyframes") || !j["keyframes"].is_array() || j["keyframes"].empty())

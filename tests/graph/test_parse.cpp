@@ -1,4 +1,7 @@
 #include "fake_registry.hpp"
+#include "io/limits.hpp"
+
+#include <filesystem>
 
 #include <cstdio>
 #include <fstream>
@@ -171,4 +174,33 @@ TEST(DidYouMean, ClosestWithinARelativeDistance) {
     EXPECT_EQ(closest_match("blur", c), "");           // too far for a short word
     EXPECT_EQ(closest_match("xyz", c), "");
     EXPECT_EQ(closest_match("x", {}), "");
+}
+
+TEST(Parse, DeepNestingIsRefusedBeforeItCanOverflowTheStack) {
+    // A wrongly typed value nested 100k deep crashed validate when the message printed it.
+    std::string deep = "{\"version\": 1, \"passes\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
+    try {
+        pathlet::parse_graph_json(deep, "deep.json");
+        FAIL() << "a 100k-deep graph must be refused";
+    } catch (const pathlet::GraphError& e) {
+        ASSERT_EQ(e.diagnostics.size(), 1u);
+        EXPECT_EQ(e.diagnostics[0].file, "deep.json");
+        EXPECT_NE(e.diagnostics[0].message.find("nesting deeper than"), std::string::npos);
+        EXPECT_EQ(e.diagnostics[0].line, 1);
+    }
+    std::string params = "{\"version\": 1, \"passes\": [{\"name\": \"a\", \"type\": \"t\", \"params\": {\"x\": " +
+                         std::string(50000, '[') + std::string(50000, ']') + "}}]}";
+    EXPECT_THROW(pathlet::parse_graph_json(params, "params.json"), pathlet::GraphError);
+    // Brackets inside strings and comments do not count.
+    std::string text = "// [[[[\n{\"version\": 1, \"name\": \"" + std::string(500, '[') + "\"}";
+    EXPECT_EQ(pathlet::io::json_nesting_depth(text, 128).depth, 1);
+}
+
+TEST(Parse, ADirectoryIsNotAGraphFile) {
+    try {
+        pathlet::parse_graph_file(std::filesystem::temp_directory_path().string());
+        FAIL();
+    } catch (const pathlet::GraphError& e) {
+        EXPECT_NE(e.diagnostics.at(0).message.find("is a directory"), std::string::npos) << e.diagnostics[0].message;
+    }
 }

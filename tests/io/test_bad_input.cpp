@@ -328,3 +328,54 @@ TEST_F(IoBadInput, UnsupportedThingsSayWhatToDo) {
 }
 
 }  // namespace
+
+// ---- defects an outside fuzzing run found (issue: hardening) ------------------------------
+
+TEST_F(IoBadInput, CellCountBeyondTheValuesIsRefusedBeforeAllocating) {
+    // 4.2 layout: "LINES n size" with a huge n and a handful of values reserved n offsets.
+    const std::string v42 =
+        "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 2 0 0\n"
+        "LINES 2000000000 4\n3 0 1 2\n";
+    g_largest_alloc = 0;
+    expect_error(put("cells.vtk", v42), "declares 2000000000 cells but only 4 values");
+    EXPECT_LT(g_largest_alloc.load(), size_t(1) << 20) << "the cell count sized an allocation";
+}
+
+TEST_F(IoBadInput, NonIntegerIndicesAreErrorsNotUndefinedBehaviour) {
+    for (const char* bad : {"nan", "inf", "-inf", "1e20", "-1e300"}) {
+        expect_error(put("conn.vtk", replace(kAscii51, "CONNECTIVITY vtktypeint64\n0 1 2 3",
+                                             std::string("CONNECTIVITY vtktypeint64\n0 1 ") + bad + " 3")),
+                     "not a number");
+        expect_error(put("offs.vtk", replace(kAscii51, "OFFSETS vtktypeint64\n0 2 4",
+                                             std::string("OFFSETS vtktypeint64\n0 ") + bad + " 4")),
+                     "not a number");
+    }
+}
+
+TEST_F(IoBadInput, OneHugeCoordinateIsDroppedAloneNotTheWholeDataSet) {
+    Pathlines p = iotest::make_lines(5, 40);
+    p.position[p.lines[2].first + 7] = glm::vec3(3e38f, 0.0f, 0.0f);  // finite, but overflows the diagonal
+    std::string path = dir + "/outlier.pathlet";
+    save_pathlines(p, path, PathlineFormat::Native);
+    LoadReport r;
+    Pathlines q = load_pathlines(path, {}, &r);
+    EXPECT_EQ(q.line_count(), 6u) << "the outlier splits its line; nothing else is lost";
+    EXPECT_EQ(q.point_count(), p.point_count() - 1);
+    EXPECT_TRUE(has(r, "dropped 1 outlying points")) << (r.warnings.empty() ? "" : r.warnings[0]);
+    EXPECT_FALSE(has(r, "duplicate"));
+}
+
+TEST_F(IoBadInput, EmptyFilesAreErrorsNamingTheFile) {
+    for (const char* name : {"empty.pathlet", "empty.vtk", "empty.vtp", "empty.txt", "empty"})
+        expect_error(put(name, ""), "the file is empty");
+}
+
+TEST_F(IoBadInput, ZlibHeadersClaimingMoreThanDeflateCanProduceAreRefused) {
+    ZlibBlockHeader h;
+    h.blocks = 1000;
+    h.block_size = 1 << 20;
+    h.compressed.assign(1000, 12);  // 1 MiB from 12 bytes: impossible for deflate
+    EXPECT_NE(zlib_blocks_implausible(h), "");
+    h.compressed.assign(1000, 2000);  // ~524:1, possible for zeros
+    EXPECT_EQ(zlib_blocks_implausible(h), "");
+}

@@ -3,6 +3,7 @@
 #include "io_test_util.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <cstring>
 
 using namespace pathlet;
@@ -98,3 +99,45 @@ TEST(IoMesh, GltfGarbageAndPathlinesRejected) {
 }
 
 }  // namespace
+
+TEST(MeshIo, GltfExternalFilesStayInsideTheFilesFolder) {
+    // A buffer uri that is absolute, or climbs out with ../, must not be read.
+    const std::string dir = iotest::temp_dir();
+    std::filesystem::create_directories(dir + "/inner");
+    iotest::write_bytes(dir + "/secret.bin", std::string(36, '\x01'));
+    for (const std::string uri : {"/etc/passwd", "../secret.bin"}) {
+        const std::string path = dir + "/inner/escape.gltf";
+        iotest::write_bytes(path, R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri +
+                                      R"(", "byteLength": 36}], "meshes": []})");
+        try {
+            load_mesh(path);
+            ADD_FAILURE() << uri << " was read";
+        } catch (const DataError& e) {
+            std::string m = e.what();
+            EXPECT_NE(m.find(path), std::string::npos) << m;
+            EXPECT_NE(m.find("outside the glTF file's folder"), std::string::npos) << m;
+            EXPECT_EQ(m.find("root:"), std::string::npos) << "no content of the refused file in the message";
+        }
+    }
+    // Beside the file is fine.
+    iotest::write_bytes(dir + "/inner/ok.bin", std::string(36, '\0'));
+    iotest::write_bytes(dir + "/inner/ok.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "ok.bin", "byteLength": 36}], "meshes": []})");
+    try {
+        load_mesh(dir + "/inner/ok.gltf");
+    } catch (const DataError& e) {
+        EXPECT_EQ(std::string(e.what()).find("outside"), std::string::npos) << e.what();  // "no triangles" is fine
+    }
+}
+
+TEST(MeshIo, EmptyMeshFilesAreErrors) {
+    const std::string dir = iotest::temp_dir();
+    for (const char* name : {"e.glb", "e.obj", "e.stl", "e.gltf"}) {
+        iotest::write_bytes(dir + "/" + name, "");
+        try {
+            load_mesh(dir + "/" + name);
+            ADD_FAILURE() << name << " loaded";
+        } catch (const DataError& e) {
+            EXPECT_NE(std::string(e.what()).find("the file is empty"), std::string::npos) << e.what();
+        }
+    }
+}

@@ -261,3 +261,64 @@ TEST(FieldReaders, Hdf5BadInput) {
     expect_data_error([&] { load_velocity_field(path); }, "too large");
     expect_data_error([&] { load_velocity_field(write("text.h5", "hello")); }, "text.h5: byte 0");
 }
+
+// ---- defects an outside fuzzing run found (issue: hardening) ------------------------------
+
+TEST(FieldReaders, VtkLegacyNonIntegerCountsAreErrorsNotUndefinedBehaviour) {
+    const std::string good = vtk_legacy(false);
+    for (const char* bad : {"nan", "inf", "-inf", "1e20", "2.5"}) {
+        std::string s = good;
+        s.replace(s.find("DIMENSIONS 3 4 2"), 16, std::string("DIMENSIONS 3 ") + bad + " 2");
+        expect_data_error([&] { load_velocity_field(write("dims.vtk", s)); }, "expected an integer");
+        s = good;
+        s.replace(s.find("POINT_DATA 24"), 13, std::string("POINT_DATA ") + bad);
+        expect_data_error([&] { load_velocity_field(write("pd.vtk", s)); }, "expected an integer");
+    }
+}
+
+TEST(FieldReaders, VtkLegacyRepeatedGridAfterTheDataIsRefused) {
+    // A second DIMENSIONS/POINT_DATA after VECTORS used to enlarge the point count but keep the
+    // small array: a read past its end (SIGSEGV in a release build).
+    const std::string good = vtk_legacy(false);
+    expect_data_error([&] { load_velocity_field(write("again.vtk", good + "\nDIMENSIONS 30 40 20\nPOINT_DATA 24000\n")); },
+                      "DIMENSIONS given twice");
+    expect_data_error([&] { load_velocity_field(write("again2.vtk", good + "\nPOINT_DATA 24\n")); }, "POINT_DATA given twice");
+}
+
+TEST(FieldReaders, VtiAppendedDataWithoutATagIsAnError) {
+    std::string s = make_vti("raw", false);
+    s = s.substr(0, s.find("<AppendedData")) + "<AppendedData";  // no delimiter, no '>'
+    expect_data_error([&] { load_velocity_field(write("noapp.vti", s)); }, "noapp.vti: byte");
+    std::string t = make_vti("raw", false);
+    t.replace(t.find("offset=\""), 8, "offset=\"-5");
+    expect_data_error([&] { load_velocity_field(write("negoff.vti", t)); }, "negoff.vti: byte");
+}
+
+TEST(FieldReaders, Hdf5DeclaredSizeMustBePlausibleFromTheStoredBytes) {
+    // Self-contained: 2^29 declared floats, one 16^3 chunk actually stored (16 KiB): refused
+    // before the 2 GiB allocation, naming the file, the dataset and the cap.
+    const std::string path = temp("declared.h5");
+    {
+        hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+        const hsize_t dims[3] = {1024, 1024, 512}, chunk[3] = {16, 16, 16};
+        hid_t space = H5Screate_simple(3, dims, nullptr);
+        hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+        H5Pset_chunk(plist, 3, chunk);
+        std::vector<float> one(16 * 16 * 16, 1.0f);
+        const hsize_t start[3] = {0, 0, 0};
+        hid_t mem = H5Screate_simple(3, chunk, nullptr);
+        for (const char* name : {"u", "v", "w"}) {
+            hid_t ds = H5Dcreate2(f, name, H5T_NATIVE_FLOAT, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+            hid_t sel = H5Scopy(space);
+            H5Sselect_hyperslab(sel, H5S_SELECT_SET, start, nullptr, chunk, nullptr);
+            H5Dwrite(ds, H5T_NATIVE_FLOAT, mem, sel, H5P_DEFAULT, one.data());
+            H5Sclose(sel);
+            H5Dclose(ds);
+        }
+        H5Sclose(mem);
+        H5Pclose(plist);
+        H5Sclose(space);
+        H5Fclose(f);
+    }
+    expect_data_error([&] { load_velocity_field(path); }, "PATHLET_MAX_INFLATE_RATIO");
+}

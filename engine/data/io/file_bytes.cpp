@@ -31,6 +31,8 @@ std::string read_file_bytes(const std::string& path) {
     char buf[1 << 16];  // pipes and special files: size unknown
     size_t got;
     while ((got = std::fread(buf, 1, sizeof buf, f.get())) > 0) out.append(buf, got);
+    // No format is empty: a 0-byte file is a failed download or copy, never an empty data set.
+    if (out.empty()) fail_at(path, at_byte(0), "the file is empty (0 bytes)");
     return out;
 }
 

@@ -3,6 +3,9 @@
 // (README, "Limits on input files").
 #pragma once
 
+#include <cstddef>
+#include <string>
+
 namespace pathlet::io {
 
 // Largest uncompressed/compressed size ratio a zlib or deflate stream may claim. Deflate
@@ -18,5 +21,14 @@ int max_json_depth();
 // Largest coordinate magnitude a point may have and still be kept (default 1e15 data units):
 // a finite outlier beyond it would overflow the bounding box to inf. PATHLET_MAX_COORDINATE.
 double max_coordinate();
+
+// Deepest [ / { nesting in JSON text (strings and // /* */ comments skipped), and the byte
+// offset where it first exceeds `limit` (or npos). Cheap, iterative: run it before parsing,
+// because walking, copying or printing a deeper value recurses and can overflow the stack.
+struct JsonDepth {
+    int depth = 0;
+    size_t first_too_deep = size_t(-1);
+};
+JsonDepth json_nesting_depth(const std::string& text, int limit);
 
 }  // namespace pathlet::io

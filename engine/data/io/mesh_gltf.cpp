@@ -15,6 +15,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/quaternion.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -142,15 +143,59 @@ struct GltfReader {
 
 }  // namespace
 
+namespace {
+
+// External buffers and images stay inside the glTF file's own folder: a uri that is absolute
+// or climbs out with ../ could read any file the user can (/etc/passwd as vertex data, or its
+// size leaked through a byteLength error). PATHLET_GLTF_ALLOW_OUTSIDE=1 lifts the fence.
+struct Fence {
+    std::filesystem::path root;
+    bool allow_outside = false;
+    std::string refused;  // the first path refused, for the error message
+
+    bool inside(const std::string& path) {
+        if (allow_outside) return true;
+        std::error_code ec;
+        const auto p = std::filesystem::weakly_canonical(path, ec).lexically_normal();
+        const auto rel = p.lexically_relative(root);
+        bool ok = !ec && !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
+        if (!ok && refused.empty()) refused = path;
+        return ok;
+    }
+};
+
+bool fenced_exists(const std::string& path, void* user) {
+    return static_cast<Fence*>(user)->inside(path) && tinygltf::FileExists(path, nullptr);
+}
+bool fenced_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    if (!static_cast<Fence*>(user)->inside(path)) {
+        if (err) *err += "refused to read '" + path + "': outside the glTF file's folder";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, nullptr);
+}
+
+}  // namespace
+
 Mesh read_gltf(std::string_view bytes, bool binary, const std::string& file, LoadReport& report) {
     report.format = binary ? "glTF 2.0 binary (.glb)" : "glTF 2.0";
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string err, warn;
     std::string base = std::filesystem::path(file).parent_path().string();
+    Fence fence;
+    std::error_code ec;
+    fence.root = std::filesystem::weakly_canonical(base.empty() ? "." : base, ec).lexically_normal();
+    const char* allow = std::getenv("PATHLET_GLTF_ALLOW_OUTSIDE");
+    fence.allow_outside = allow && std::string(allow) == "1";
+    loader.SetFsCallbacks({&fenced_exists, &tinygltf::ExpandFilePath, &fenced_read, &tinygltf::WriteWholeFile, &fence});
     bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                    unsigned(bytes.size()), base)
                      : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
+    if (!fence.refused.empty())
+        fail_at(file, "glTF", "external file '" + fence.refused + "' is outside the glTF file's folder " +
+                                  fence.root.string() + "; buffers and images must lie beside it (set "
+                                  "PATHLET_GLTF_ALLOW_OUTSIDE=1 to allow other folders)");
     if (!ok) fail_at(file, "glTF", "cannot parse: " + (err.empty() ? std::string("unknown tinygltf error") : err));
     if (!warn.empty()) report.warnings.push_back("tinygltf: " + warn);
     Mesh m = GltfReader{model, file, report, {}, 0}.run();

@@ -130,14 +130,7 @@ struct VtpReader {
                                " (counts disagree, or a decompression bomb)");
         // zlib inflates at most ~1032:1: a header whose blocks claim more than their compressed
         // bytes can hold is refused before any allocation (a "many small blocks" bomb).
-        for (uint64_t i = 0; i < h.blocks; ++i) {
-            uint64_t want = (i + 1 == h.blocks && h.last_block_size) ? h.last_block_size : h.block_size;
-            if (double(want) > double(h.compressed[i]) * max_inflate_ratio() + 64.0)
-                fail(src.at(), what + ": zlib block " + std::to_string(i) + " claims " + std::to_string(want) +
-                                   " bytes from " + std::to_string(h.compressed[i]) +
-                                   " compressed bytes, more than deflate can produce (ratio cap " +
-                                   std::to_string(int(max_inflate_ratio())) + ", PATHLET_MAX_INFLATE_RATIO)");
-        }
+        if (std::string bad = zlib_blocks_implausible(h); !bad.empty()) fail(src.at(), what + ": " + bad);
         std::string_view blocks;
         if (csum > src.max_remaining() || !src.take(size_t(csum), blocks))
             fail(src.at(), what + ": compressed blocks (" + std::to_string(csum) + " bytes) run past the end of the data (file truncated?)");

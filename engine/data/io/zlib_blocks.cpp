@@ -1,5 +1,7 @@
 #include "zlib_blocks.hpp"
 
+#include "limits.hpp"
+
 #include <zlib.h>
 
 #include <bit>
@@ -47,6 +49,17 @@ std::string zlib_blocks_encode(std::string_view data, int header_bytes, bool big
         h.compressed.push_back(cap);
     }
     return zlib_blocks_encode_header(h, header_bytes, big_endian) + body;
+}
+
+std::string zlib_blocks_implausible(const ZlibBlockHeader& h) {
+    for (uint64_t i = 0; i < h.blocks && i < h.compressed.size(); ++i) {
+        uint64_t want = (i + 1 == h.blocks && h.last_block_size) ? h.last_block_size : h.block_size;
+        if (double(want) > double(h.compressed[i]) * max_inflate_ratio() + 64.0)
+            return "zlib block " + std::to_string(i) + " claims " + std::to_string(want) + " bytes from " +
+                   std::to_string(h.compressed[i]) + " compressed bytes, more than deflate can produce (ratio cap " +
+                   std::to_string(int(max_inflate_ratio())) + ", PATHLET_MAX_INFLATE_RATIO)";
+    }
+    return "";
 }
 
 std::string zlib_blocks_decode(const ZlibBlockHeader& h, std::string_view blocks, char* out) {

@@ -21,6 +21,10 @@ struct ZlibBlockHeader {
 std::string zlib_blocks_encode(std::string_view data, int header_bytes, bool big_endian, size_t block_size = 32768);
 std::string zlib_blocks_encode_header(const ZlibBlockHeader& h, int header_bytes, bool big_endian);
 
+// "" when every block's claimed size is one deflate can produce from its compressed bytes
+// (io::max_inflate_ratio()), else why not: checked before anything is allocated.
+std::string zlib_blocks_implausible(const ZlibBlockHeader& h);
+
 // Inflates block by block into `out` (which must already be sized to h.uncompressed_size());
 // each block may produce at most its declared size, so a lying header cannot make it
 // allocate or write more (no decompression bombs). Returns "" or what went wrong.

@@ -34,6 +34,7 @@
 //
 // Every problem is collected with its JSON pointer; one GraphError is thrown at the end.
 #include "graph_internal.hpp"
+#include "io/limits.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -383,6 +384,16 @@ private:
 }  // namespace
 
 GraphFile parse_graph_json(const std::string& text, const std::string& path) {
+    // Before parsing: a value nested 100k deep would overflow the stack when it is copied or
+    // printed in a message. Graphs are a few levels deep; the cap is io::max_json_depth().
+    const int limit = io::max_json_depth();
+    if (io::JsonDepth d = io::json_nesting_depth(text, limit); d.first_too_deep != size_t(-1)) {
+        Diagnostic diag{path, "", "nesting deeper than " + std::to_string(limit) +
+                                      " levels (arrays/objects); a graph needs a handful. PATHLET_MAX_JSON_DEPTH raises the cap"};
+        diag.line = 1 + int(std::count(text.begin(), text.begin() + long(d.first_too_deep), '\n'));
+        diag.column = int(d.first_too_deep - (text.rfind('\n', d.first_too_deep) + 1)) + 1;
+        throw GraphError({diag});
+    }
     json root;
     try {
         root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
@@ -409,6 +420,9 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path) {
 }
 
 GraphFile parse_graph_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw GraphError({{path, "", "is a directory, not a graph file (give a .json file, e.g. " + path + "/*.json)"}});
     std::ifstream in(path, std::ios::binary);
     if (!in) throw GraphError({{path, "", std::string("cannot open graph file: ") + std::strerror(errno)}});
     std::ostringstream s;
