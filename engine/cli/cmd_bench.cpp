@@ -1,6 +1,7 @@
 // pathlet bench GRAPH...: the same data, camera, times and sizes through several graphs;
 // prints each graph's per-pass table (like the study's Table 3) and a side-by-side summary.
 #include "args.hpp"
+#include "util/output_check.hpp"
 #include "commands.hpp"
 #include "renderer.hpp"
 #include "scene_args.hpp"
@@ -58,6 +59,8 @@ int run(const std::vector<std::string>& argv) {
     base.camera_path = a.get("camera");
     base.write_images = false;
     base.quiet = true;
+
+    if (a.has("report")) check_output_file(a.get("report") + ".csv", "the report (--report)");  // before the run
 
     Runtime rt;
     rt.load_plugins(a.all("plugin-dir"));

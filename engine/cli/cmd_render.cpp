@@ -1,5 +1,6 @@
 // pathlet render [GRAPH]: run a graph over a time range and write images (and a video).
 #include "args.hpp"
+#include "util/output_check.hpp"
 #include "commands.hpp"
 #include "renderer.hpp"
 #include "scene_args.hpp"
@@ -74,6 +75,11 @@ int run(const std::vector<std::string>& argv) {
     if (!opt.video_path.empty() && !VideoWriter::available())
         std::fprintf(stderr, "warning: ffmpeg not found on PATH; --video ignored (images are still written)\n"),
             opt.video_path.clear();
+
+    // Before GL set-up and data loading: every output place must take files.
+    if (opt.write_images) check_output_dir(opt.out_dir, "images (--out)");
+    if (a.has("report")) check_output_file(a.get("report") + ".csv", "the timing report (--report)");
+    if (!opt.video_path.empty()) check_output_file(opt.video_path, "the video (--video)");
 
     Runtime rt;
     rt.load_plugins(a.all("plugin-dir"));

@@ -1,5 +1,6 @@
 // pathlet trace FIELD -o OUT: dense pathlines (and optionally the wall) from a velocity volume.
 #include "args.hpp"
+#include "util/output_check.hpp"
 #include "commands.hpp"
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
@@ -61,6 +62,10 @@ int run(std::vector<std::string> argv) {
     if (!a.parse(argv)) return 0;
     const std::string out = a.get("output");
     if (out.empty()) throw UsageError("missing -o OUT");
+    // Before minutes of tracing: the outputs' folders must be writable and their formats known.
+    check_output_file(out, "the pathlines");
+    io::format_from_extension(out);
+    if (!a.get("wall").empty()) check_output_file(a.get("wall"), "the wall");
 
     trace::TraceOptions o;
     o.step = float(a.number("step"));

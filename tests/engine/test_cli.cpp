@@ -206,3 +206,57 @@ TEST(Cli, CaptureWithoutExtensionPicksExrForFloatAndPngOtherwise) {
     EXPECT_TRUE(fs::exists(out / "blurred_000.png"));
     EXPECT_TRUE(fs::exists(out / "soft.tmp_000.exr"));  // the blur's rgba16f intermediate
 }
+
+TEST(Cli, OutputPlacesAreCheckedBeforeAnyWork) {
+    // A folder that cannot be created: the error names it and comes before GL or data loading.
+    CliRun r = pathlet("render --out /proc/pathlet_no_such --time 1 --size 32x24");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/proc/pathlet_no_such"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("GL renderer"), std::string::npos) << "failed only after GL set-up:\n" << r.err;
+    EXPECT_EQ(r.err.find("lines in"), std::string::npos) << "failed only after loading data:\n" << r.err;
+    // --out naming a file, --report and --video into impossible places.
+    fs::path file = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "a_file.txt";
+    std::ofstream(file) << "x";
+    r = pathlet("render --out " + file.string() + " --time 1 --size 32x24");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("not a folder"), std::string::npos) << r.err;
+    r = pathlet("render --no-images --report /proc/none/t --time 1 --size 32x24");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("--report"), std::string::npos) << r.err;
+    r = pathlet("bench isl --report /proc/none/b --size 32x24 --frames 1 --warmup 0");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/proc/none"), std::string::npos) << r.err;
+    // phantom and trace: before tracing.
+    r = pathlet("phantom --preset small -o /proc/none/p.vtp");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/proc/none"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("tracing"), std::string::npos) << "failed only after tracing:\n" << r.err;
+    r = pathlet("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "p.vtp").string() +
+                " --wall /proc/none/w.glb");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("/proc/none/w.glb"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadSizesAndDirectoriesAreClearErrors) {
+    for (const char* size : {"0x0", "-5x10", "100000x100000", "axb"}) {
+        CliRun r = pathlet(std::string("render --size ") + size + " --no-images");
+        EXPECT_EQ(r.code, 2) << size;
+        EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+    }
+    CliRun r = pathlet("validate " + std::string(PATHLET_TEST_BINARY_DIR));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+    r = pathlet("info " + std::string(PATHLET_TEST_BINARY_DIR));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+}
+
+TEST(Cli, PathsWithSpacesAndNonUtf8BytesWork) {
+    fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "with space \xff\xfe dir";
+    fs::remove_all(dir);
+    CliRun r = pathlet("render isl --data '" + src("tests/engine/data/two_lines.vtk") + "' --out '" + dir.string() +
+                       "' --time 0.5 --size 32x24 --quiet");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "isl" / "00000.png"));
+    fs::remove_all(dir);
+}

@@ -38,7 +38,11 @@ void check_output_file(const std::string& path, const std::string& what) {
     std::error_code ec;
     if (fs::is_directory(fs::path(path), ec)) fail(what, path, "it is a folder, not a file name");
     fs::path parent = fs::path(path).parent_path();
-    check_output_dir(parent.empty() ? "." : parent.string(), what);
+    try {
+        check_output_dir(parent.empty() ? "." : parent.string(), what);
+    } catch (const std::runtime_error& e) {  // name the file, not only its folder
+        throw std::runtime_error(std::string(e.what()) + " (for " + path + ")");
+    }
 }
 
 }  // namespace pathlet
