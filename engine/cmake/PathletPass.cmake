@@ -20,8 +20,11 @@ function(pathlet_add_pass name)
     VISIBILITY_INLINES_HIDDEN ON
     BUILD_RPATH_USE_ORIGIN ON
     INSTALL_RPATH "$ORIGIN/../..")
-  # Unresolved symbols fail at link time, not at load time.
-  target_link_options(${name} PRIVATE "LINKER:-z,defs")
+  # Unresolved symbols fail at link time, not at load time. Not under sanitizers: their
+  # runtime symbols come from the executable that loads the plugin.
+  if(NOT PATHLET_SANITIZED)
+    target_link_options(${name} PRIVATE "LINKER:-z,defs")
+  endif()
   foreach(shader ${P_SHADERS})
     get_filename_component(abs ${shader} ABSOLUTE)
     get_filename_component(fname ${shader} NAME)

@@ -170,13 +170,14 @@ TEST(Cli, PhantomTraceAndInfoRoundTrip) {
 }
 
 TEST(Cli, DataCommandsRejectBadInputWithExitCodes) {
-    EXPECT_EQ(pathlet("phantom --preset huge -o /tmp/x.vtp").code, 2);
+    const std::string scratch = (fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs").string();
+    EXPECT_EQ(pathlet("phantom --preset huge -o " + scratch + "/x.vtp").code, 2);
     EXPECT_EQ(pathlet("phantom --preset small").code, 2);  // no output
     CliRun r = pathlet("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt").string());
     EXPECT_EQ(r.code, 1);  // unknown output extension: a clear error, nothing written
     EXPECT_NE(r.err.find("x.txt"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt"));
-    r = pathlet("trace /no/such/field.vtk -o /tmp/y.vtp");
+    r = pathlet("trace /no/such/field.vtk -o " + scratch + "/y.vtp");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/no/such/field.vtk"), std::string::npos) << r.err;
     fs::path bad = fs::path(PATHLET_TEST_BINARY_DIR) / "truncated.vtk";

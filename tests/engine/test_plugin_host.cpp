@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <unistd.h>
 #include <fstream>
 
 using namespace pathlet;
@@ -52,7 +53,7 @@ TEST_F(PluginHostTest, GoodPluginRegistersItsTypes) {
 TEST_F(PluginHostTest, MissingFile) { expect_failure(fixture("no_such_plugin"), "file not found"); }
 
 TEST_F(PluginHostTest, NotASharedLibrary) {
-    fs::path p = fs::temp_directory_path() / "pathlet_text_file.so";
+    fs::path p = fs::temp_directory_path() / ("pathlet_text_file_" + std::to_string(::getpid()) + ".so");
     std::ofstream(p) << "this is not an ELF file\n";
     expect_failure(p.string(), "cannot load");
 }

@@ -17,10 +17,27 @@
 // The replacement operators below pair malloc with free; GCC's inliner flags the pairing.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 static std::atomic<size_t> g_largest_alloc{0};
-#if !defined(__SANITIZE_ADDRESS__)  // ASan owns operator new; its allocator reports huge requests itself
-void* operator new(size_t n) {
+static void record_alloc(size_t n) {
     size_t prev = g_largest_alloc.load(std::memory_order_relaxed);
     while (n > prev && !g_largest_alloc.compare_exchange_weak(prev, n)) {}
+}
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PATHLET_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(PATHLET_ASAN)
+// ASan owns operator new: its allocator hook records the sizes instead, so the "no giant
+// allocation" checks stay real in the sanitizer build.
+#include <sanitizer/allocator_interface.h>
+[[maybe_unused]] static const bool g_hook_installed = [] {
+    __sanitizer_install_malloc_and_free_hooks([](const volatile void*, size_t n) { record_alloc(n); },
+                                              [](const volatile void*) {});
+    return true;
+}();
+#else
+void* operator new(size_t n) {
+    record_alloc(n);
     if (void* p = std::malloc(n ? n : 1)) return p;
     throw std::bad_alloc();
 }
@@ -98,15 +115,12 @@ TEST_F(IoBadInput, TruncatedFilesEveryFormat) {
     files.push_back({"n.pathlet", iotest::read_bytes(native)});
     for (auto& [name, bytes] : files) {
         // Cutting anywhere never crashes; the half-way cut must be reported.
+        // Every format here declares its counts up front, so every cut must fail, naming the
+        // file and a place; none may load a silently shortened data set.
         for (int k = 1; k < 40; ++k) {
             std::string path = put(name, bytes.substr(0, bytes.size() * size_t(k) / 40));
-            try {
-                load_pathlines(path);
-            } catch (const DataError& e) {
-                EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
-            }
+            expect_error(path, "");
         }
-        expect_error(put(name, bytes.substr(0, bytes.size() / 2)), "");
     }
 }
 
@@ -378,4 +392,13 @@ TEST_F(IoBadInput, ZlibHeadersClaimingMoreThanDeflateCanProduceAreRefused) {
     EXPECT_NE(zlib_blocks_implausible(h), "");
     h.compressed.assign(1000, 2000);  // ~524:1, possible for zeros
     EXPECT_EQ(zlib_blocks_implausible(h), "");
+}
+
+TEST_F(IoBadInput, TheAllocationRecorderSeesAllocations) {
+    // The "no giant allocation" checks above are only as good as the recorder: in the plain
+    // build it is a replaced operator new, under ASan the allocator's malloc hook.
+    g_largest_alloc = 0;
+    auto big = std::make_unique<std::vector<char>>(size_t(64) << 20);
+    EXPECT_GE(g_largest_alloc.load(), size_t(64) << 20);
+    EXPECT_EQ(big->size(), size_t(64) << 20);
 }

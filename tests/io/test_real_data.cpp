@@ -4,6 +4,7 @@
 #include "io/pathline_io.hpp"
 #include "io_test_util.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 using namespace pathlet;
@@ -100,7 +101,12 @@ TEST(IoRealData, AortaCenterlineVtpHasNoTime) {
     o.time_array = "MaximumInscribedSphereRadius";
     LoadReport r;
     Pathlines p = load_pathlines(path, o, &r);
-    EXPECT_EQ(p.line_count() >= 1, true);
+    ASSERT_GE(p.line_count(), 1u);
+    EXPECT_GE(p.point_count(), 2 * p.line_count());
+    // The chosen array became the time: positive radii, increasing along each (repaired) line.
+    for (const auto& l : p.lines)
+        for (uint32_t k = 1; k < l.count; ++k) ASSERT_GT(p.time[l.first + k], p.time[l.first + k - 1]);
+    EXPECT_GT(*std::min_element(p.time.begin(), p.time.end()), 0.0f);
     EXPECT_NE(r.format.find("zlib"), std::string::npos) << r.format;
 }
 

@@ -309,3 +309,23 @@ TEST(lineao, DebugGraphCapturesEveryIntermediate) {
     EXPECT_TRUE(ao.is_float);
     EXPECT_FALSE(has_nan(ao));
 }
+
+TEST(lineao, MoreStrengthDarkensInProportion) {
+    // AO = 1 - strength/s_r * LineAO: the occlusion (1 - AO) of the bundle core grows with the
+    // strength, in proportion while nothing clamps at 0.
+    Regions half = measure(render_frame({"strength=0.5"}), kFacing);
+    Regions one = measure(render_frame({"strength=1"}), kFacing);
+    Regions two = measure(render_frame({"strength=2"}), kFacing);
+    EXPECT_GT(half.bundle_core, one.bundle_core);
+    EXPECT_GT(one.bundle_core, two.bundle_core);
+    EXPECT_NEAR((1.0 - one.bundle_core) / (1.0 - half.bundle_core), 2.0, 0.15);
+    EXPECT_GT(one.isolated, two.isolated - 1e-6) << "an isolated line stays (nearly) unoccluded";
+}
+
+TEST(lineao, AoMagnitudeIsPinned) {
+    // The numbers of this scene at the default parameters, so a change of LineAO's strength
+    // (a factor, a normalisation, a sample count) shows up here and not only as "different".
+    Regions r = measure(render_frame(), kFacing);
+    EXPECT_NEAR(r.bundle_core, 0.822, 0.02);
+    EXPECT_NEAR(r.isolated, 1.0, 0.005);
+}

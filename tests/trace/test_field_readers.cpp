@@ -192,30 +192,32 @@ TEST(FieldReaders, VtiBadInput) {
     expect_data_error([&] { load_velocity_field(write("badz.vti", badz)); }, "badz.vti: byte");
 }
 
-TEST(FieldReaders, Hdf5Layout) {
-    // A tiny 4DFlowNet-style file: u, v, w, mask (1, 2, 3, 4), dx.
-    const std::string path = temp("tiny.h5");
-    {
-        hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-        const hsize_t dims[4] = {1, 2, 3, 4};
-        hid_t space = H5Screate_simple(4, dims, nullptr);
-        std::vector<float> data(24);
-        for (const char* name : {"u", "v", "w", "mask"}) {
-            for (size_t i = 0; i < 24; ++i) data[i] = name[0] == 'm' ? 1.0f : float(i) * (name[0] - 'u' + 1) * 1e-3f;
-            hid_t d = H5Dcreate2(f, name, H5T_NATIVE_FLOAT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-            H5Dwrite(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
-            H5Dclose(d);
-        }
-        const hsize_t one[2] = {1, 3};
-        hid_t s2 = H5Screate_simple(2, one, nullptr);
-        hid_t d = H5Dcreate2(f, "dx", H5T_NATIVE_FLOAT, s2, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        const float dx[3] = {0.5f, 0.5f, 0.5f};
-        H5Dwrite(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, dx);
+// A tiny 4DFlowNet-style file: u, v, w, mask of shape (1, 2, 3, 4), and dx.
+static void write_tiny_h5(const std::string& path) {
+    hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t dims[4] = {1, 2, 3, 4};
+    hid_t space = H5Screate_simple(4, dims, nullptr);
+    std::vector<float> data(24);
+    for (const char* name : {"u", "v", "w", "mask"}) {
+        for (size_t i = 0; i < 24; ++i) data[i] = name[0] == 'm' ? 1.0f : float(i) * (name[0] - 'u' + 1) * 1e-3f;
+        hid_t d = H5Dcreate2(f, name, H5T_NATIVE_FLOAT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        H5Dwrite(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
         H5Dclose(d);
-        H5Sclose(s2);
-        H5Sclose(space);
-        H5Fclose(f);
     }
+    const hsize_t one[2] = {1, 3};
+    hid_t s2 = H5Screate_simple(2, one, nullptr);
+    hid_t d = H5Dcreate2(f, "dx", H5T_NATIVE_FLOAT, s2, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const float dx[3] = {0.5f, 0.5f, 0.5f};
+    H5Dwrite(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, dx);
+    H5Dclose(d);
+    H5Sclose(s2);
+    H5Sclose(space);
+    H5Fclose(f);
+}
+
+TEST(FieldReaders, Hdf5Layout) {
+    const std::string path = temp("tiny.h5");
+    write_tiny_h5(path);
     const VelocityField f = load_velocity_field(path);
     EXPECT_EQ(f.grid.dims, glm::ivec3(4, 3, 2));  // (i, j, k) = (2, 3, 4) -> x = k, y = j, z = i
     EXPECT_EQ(f.grid.spacing, glm::vec3(0.5f));
@@ -230,8 +232,8 @@ TEST(FieldReaders, Hdf5Layout) {
 TEST(FieldReaders, Hdf5BadInput) {
     // Truncated: the first kilobyte of a valid file.
     {
-        const std::string path = temp("tiny.h5");
-        if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs Hdf5Layout first";
+        const std::string path = temp("tiny_for_truncation.h5");  // its own file: no order between tests
+        write_tiny_h5(path);
         std::ifstream in(path, std::ios::binary);
         std::string bytes((std::istreambuf_iterator<char>(in)), {});
         expect_data_error([&] { load_velocity_field(write("trunc.h5", bytes.substr(0, 1000))); }, "trunc.h5");

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Runs every fuzz target (tests/fuzz) for SECONDS each (default 60) under ASan+UBSan, after
+# replaying the checked-in regression inputs. A crash, sanitizer report, uncaught exception or a
+# single allocation over 512 MB fails the run; the input is saved in build-san/fuzz-findings/.
+#   scripts/fuzz.sh [SECONDS] [TARGET...]      (builds with scripts/sanitize.sh's settings)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_PER_TARGET=${1:-60}
+shift || true
+TARGETS=("$@")
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(vtk_legacy vtp text_rows native gltf glb stl obj vtk_field vti hdf5 graph camera)
+if [ ! -x build-san/bin/make_seeds ]; then
+  CC=clang-14 CXX=clang++-14 cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPATHLET_FUZZ=ON \
+    -DPATHLET_BUILD_BENCHMARKS=OFF >/dev/null
+fi
+cmake --build build-san -j"$(nproc)" --target make_seeds $(printf 'fuzz_%s ' "${TARGETS[@]}") >/dev/null
+CORPUS=build-san/fuzz-corpus FINDINGS=build-san/fuzz-findings
+mkdir -p "$CORPUS" "$FINDINGS"
+build-san/bin/make_seeds "$CORPUS" . >/dev/null
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+failed=0
+printf '%-12s %10s %10s %s\n' target runs seconds result
+for t in "${TARGETS[@]}"; do
+  bin=build-san/bin/fuzz_$t
+  mkdir -p "$CORPUS/$t"
+  # Inputs that once crashed must stay fixed.
+  if compgen -G "tests/fuzz/regressions/$t/*" >/dev/null; then
+    if ! "$bin" -malloc_limit_mb=512 -rss_limit_mb=2048 tests/fuzz/regressions/$t/* >"$FINDINGS/$t.replay.log" 2>&1; then
+      echo "fuzz: $t: a regression input fails again (see $FINDINGS/$t.replay.log)"; failed=1; continue
+    fi
+  fi
+  dict=(); [ -f "tests/fuzz/$t.dict" ] && dict=(-dict="tests/fuzz/$t.dict")
+  log="$FINDINGS/$t.log"
+  if "$bin" "$CORPUS/$t" "${dict[@]}" -max_total_time="$SECONDS_PER_TARGET" -malloc_limit_mb=512 -rss_limit_mb=2048 \
+       -timeout=10 -artifact_prefix="$FINDINGS/$t-" -print_final_stats=1 >"$log" 2>&1; then
+    result=ok
+  else
+    result="FAILED: $(grep -m1 -E 'ERROR|runtime error|Test unit written' "$log" || echo 'see log') ($log)"
+    failed=1
+  fi
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  printf '%-12s %10s %10s %s\n' "$t" "${runs:-?}" "$SECONDS_PER_TARGET" "$result"
+done
+exit "$failed"
