@@ -7,11 +7,39 @@
 #include "scene_args.hpp"
 #include "util/atomic_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
 namespace pathlet::cli {
 namespace {
+
+// --set for one graph only: "GRAPH:NAME=VALUE" where GRAPH is a graph as listed (its name or
+// file) or its 1-based position in the list (so one graph can run twice, set differently).
+// Plain "NAME=VALUE" goes to every graph. Returns the overrides of graph `index` (0-based).
+std::vector<std::string> sets_for(const std::vector<std::string>& all, const std::vector<std::string>& graphs, size_t index) {
+    std::vector<std::string> out;
+    for (const auto& s : all) {
+        const size_t colon = s.find(':'), eq = s.find('=');
+        if (colon == std::string::npos || (eq != std::string::npos && eq < colon)) {
+            out.push_back(s);  // no qualifier (a ':' inside the value does not count)
+            continue;
+        }
+        const std::string q = s.substr(0, colon);
+        bool known = false;
+        for (size_t i = 0; i < graphs.size(); ++i) {
+            bool match = q == graphs[i] || q == std::to_string(i + 1);
+            known |= match;
+            if (match && i == index) out.push_back(s.substr(colon + 1));
+        }
+        if (!known) {
+            std::string list;
+            for (size_t i = 0; i < graphs.size(); ++i) list += (i ? ", " : "") + std::to_string(i + 1) + " = " + graphs[i];
+            throw UsageError("--set '" + s + "': '" + q + "' is none of the graphs (" + list + ")");
+        }
+    }
+    return out;
+}
 
 std::vector<std::string> split(const std::string& s, char sep) {
     std::vector<std::string> out;
@@ -32,7 +60,9 @@ int run(const std::vector<std::string>& argv) {
         .option("time", "T|A:B:STEP", "9", "animation time(s) rendered")
         .option("frames", "N", "10", "measured frames per time (after warm-up)")
         .option("warmup", "N", "3", "frames before timing starts")
-        .multi("set", "NAME=VALUE", "override a variable or pass parameter in every graph (unknown names are errors)")
+        .multi("set", "[GRAPH:]NAME=VALUE",
+               "override a variable or pass parameter: in every graph, or with GRAPH: (a graph as listed, or its "
+               "position 1, 2, ...) in that one only; unknown names are errors")
         .option("timing", "auto|gpu|finish", "auto", "timing backend (auto: finish on llvmpipe, timestamps on a GPU)")
         .option("camera", "FILE", "", "camera path JSON (default: frame the data)")
         .option("report", "PREFIX", "", "write PREFIX.csv and PREFIX.json with every pass of every run")
@@ -40,7 +70,9 @@ int run(const std::vector<std::string>& argv) {
     add_scene_options(a);
     a.example("pathlet bench variant1_lineao,isl --size 1280x720,1920x1080",
               "the study's comparison on the built-in phantom with a 1 s pathlet window")
-        .example("pathlet bench variant1_lineao --set window=0", "every line drawn (no time window)");
+        .example("pathlet bench variant1_lineao --set window=0", "every line drawn (no time window)")
+        .example("pathlet bench variant3_geomfade,variant3_geomfade --set 2:fade_measure=arc_length",
+                 "one graph twice, side by side: taper measured in time (1) and in arc length (2)");
     if (!a.parse(argv)) return 0;
 
     std::vector<glm::ivec2> sizes;
@@ -75,10 +107,17 @@ int run(const std::vector<std::string>& argv) {
     std::vector<Row> rows;
     std::string csv;
     json runs = json::array();
-    for (const auto& gname : split(a.pos("GRAPHS"), ',')) {
+    const std::vector<std::string> graphs = split(a.pos("GRAPHS"), ',');
+    for (size_t gi = 0; gi < graphs.size(); ++gi) sets_for(base.sets, graphs, gi);  // bad qualifiers: before any work
+    for (size_t gi = 0; gi < graphs.size(); ++gi) {
+        const std::vector<std::string> own = sets_for(base.sets, graphs, gi);
+        std::string gname = graphs[gi];
+        for (const auto& s : own)  // label rows with the overrides only this graph gets
+            if (std::find(base.sets.begin(), base.sets.end(), s) == base.sets.end()) gname += " [" + s + "]";
         for (glm::ivec2 size : sizes) {
             RenderOptions opt = base;
-            opt.graph_path = resolve_graph_path(gname);
+            opt.sets = own;
+            opt.graph_path = resolve_graph_path(graphs[gi]);
             opt.size = size;
             RenderResult r;
             try {
@@ -93,7 +132,7 @@ int run(const std::vector<std::string>& argv) {
             std::printf("%s\n", r.profiler.table(title).c_str());
             rows.push_back({gname, size, r.profiler.frame_ms()});
             json meta = {{"graph", opt.graph_path}, {"size", {size.x, size.y}}, {"renderer", rt.gl->renderer()},
-                         {"data", scene.source}, {"sets", base.sets}};
+                         {"data", scene.source}, {"sets", own}};
             runs.push_back(r.profiler.to_json(meta));
             std::string c = r.profiler.csv();
             // Prefix every CSV row with graph and size so runs can be concatenated.

@@ -261,3 +261,20 @@ TEST(Cli, PathsWithSpacesAndNonUtf8BytesWork) {
     EXPECT_TRUE(fs::exists(dir / "isl" / "00000.png"));
     fs::remove_all(dir);
 }
+
+TEST(Cli, BenchSetsCanTargetOneGraph) {
+    const std::string common = " --data " + src("tests/engine/data/two_lines.vtk") + " --time 0.5 --size 32x24 --frames 1 --warmup 0";
+    // The same graph twice, set differently: both rows, labelled.
+    CliRun r = pathlet("bench isl,isl --set 2:window=0" + common);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("isl [window=0]"), std::string::npos) << r.out;
+    // A parameter only one graph has, given to that graph only.
+    r = pathlet("bench isl,variant3_geomfade --set variant3_geomfade:tail_fade=0.2" + common);
+    EXPECT_EQ(r.code, 0) << r.err;
+    r = pathlet("bench isl,variant3_geomfade --set tail_fade=0.2" + common);
+    EXPECT_EQ(r.code, 1) << "unqualified: every graph must have it";
+    // A qualifier naming no listed graph: a usage error before any work.
+    r = pathlet("bench isl --set 3:window=0" + common);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("none of the graphs"), std::string::npos) << r.err;
+}
