@@ -34,11 +34,15 @@ public:
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
         const size_t cap_bytes = size_t(ctx.params().f("max_memory_mb") * 1024.0 * 1024.0);
         max_nodes_ = std::max<size_t>(1, std::min(size_t(max_texels), cap_bytes / oit::kNodeBytes));
-        // Rasterise without attachments: a framebuffer that only has a size.
+        // Rasterise without colour attachments: a framebuffer that only has a size, plus the
+        // optional coverage depth (every fragment kept: depth test ALWAYS).
         glm::ivec2 size = ctx.output_size();
         if (!fbo_) glCreateFramebuffers(1, &fbo_);
         glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x);
         glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y);
+        coverage_ = ctx.connected("coverage");
+        glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, coverage_ ? ctx.texture("coverage").id : 0, 0);
+        drawer_.set_depth_func(GL_ALWAYS);
     }
 
     void execute(pathlet::PassContext& ctx) override {
@@ -94,6 +98,11 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
         glm::ivec2 size = ctx.output_size();
         glViewport(0, 0, size.x, size.y);
+        if (coverage_) {
+            glDepthMask(GL_TRUE);
+            const float far = 1.0f;
+            glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &far);
+        }
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         GLuint counter = ctx.buffer("counter").id;
         glBindImageTexture(0, ctx.texture("heads").id, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
@@ -115,6 +124,7 @@ private:
     lines::Drawer drawer_;
     lines::EndFade fade_;
     GLuint fbo_ = 0, view_ = 0, viewed_ = 0;
+    bool coverage_ = false;
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
 };
@@ -132,6 +142,8 @@ pathlet::PassTypeInfo fill_list_type() {
                      "that needs more drops fragments and says so")
         .input_texture("heads", "r32ui", "per-pixel list heads, cleared by clear_list")
         .input_buffer("counter", "node counter, cleared by clear_list")
+        .output_texture("coverage", "depth24",
+                        "depth < 1 where any fragment landed (bind it so resolve_list skips empty tiles)", 1, 1.0f, true)
         .output_buffer("nodes", oit::kNodeBytes, 0,
                        "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
                        "overflow");

@@ -46,7 +46,14 @@ public:
         }
         const GLuint zero[4] = {0, 0, 0, 0};
         glNamedBufferSubData(stats_, 0, sizeof(zero), zero);
-        ctx.bind_framebuffer(targets_);
+        const bool skip_empty = ctx.connected("coverage");
+        if (skip_empty) {  // background everywhere first; the shader then runs on covered tiles only
+            const glm::vec4 bg(p.v3("background"), 0.0f);
+            const glm::vec4 none(0.0f);
+            for (const auto& t : targets_)
+                glClearTexImage(ctx.texture(t).id, 0, GL_RGBA, GL_FLOAT, t == "front_alpha" ? &none.x : &bg.x);
+        }
+        ctx.bind_framebuffer(targets_, skip_empty ? "coverage" : "");
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
         glBindImageTexture(0, ctx.texture("heads").id, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
@@ -62,7 +69,8 @@ public:
         prog_->set("u_use_ao", ao ? 1 : 0);
         prog_->set("u_ao_tolerance", p.f("ao_tolerance"));
         prog_->set("u_background", p.v3("background"));
-        ctx.draw_fullscreen();
+        if (skip_empty) ctx.draw_fullscreen_on_geometry(*prog_);
+        else ctx.draw_fullscreen();
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         GLuint s[2] = {0, 0};
         glGetNamedBufferSubData(stats_, 0, sizeof(s), s);
@@ -96,6 +104,8 @@ PATHLET_PLUGIN("resolve_list", {
             .input_buffer("nodes", "list nodes (fill_list)")
             .input_texture("ao", "r16f", "smoothed AO of the opaque core (bilateral's ao_smooth)", true)
             .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core)", true)
+            .input_texture("coverage", "depth24",
+                           "fill_list's coverage depth: when connected, pixels without fragments are only cleared", true)
             .output_texture("color", "rgba8",
                             "composited colour, alpha 1 where any fragment landed (lit by AO when ao is connected)")
             .output_texture("unlit", "rgba8", "the same composite without AO (bind it to get it)", 1, 1.0f, true)

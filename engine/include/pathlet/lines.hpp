@@ -71,8 +71,12 @@ public:
     // The same uniforms and buffer without drawing (for a pass that issues its own draws).
     void prepare(PassContext& ctx, const ShaderProgram& prog);
     const GpuScene::Ranges& ranges() const { return ranges_; }
+    // Depth test of the draw (default GL_LEQUAL). GL_ALWAYS keeps every fragment, e.g. for OIT,
+    // while a bound depth target still records where fragments landed.
+    void set_depth_func(GLenum f) { depth_func_ = f; }
 
 private:
+    GLenum depth_func_ = GL_LEQUAL;
     GpuScene::Ranges ranges_;
     std::vector<glm::vec4> pathlets_;
     GLuint buffer_ = 0;

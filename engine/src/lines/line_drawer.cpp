@@ -60,7 +60,7 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
 void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     prepare(ctx, prog);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);  // halos pushed past the far plane still land on the cleared 1.0
+    glDepthFunc(depth_func_);  // LEQUAL: halos pushed past the far plane still land on the cleared 1.0
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);  // quads face either way
