@@ -122,7 +122,11 @@ std::unique_ptr<GlContext> GlContext::create_headless(const Options& opts) {
             tried += "  EGL device platform: no devices\n";
         }
     }
+    else if (!force_software)
+        tried += "  EGL device platform: not offered by this EGL (no EGL_EXT_platform_device; no vendor library?)\n";
     // 2. Mesa surfaceless (llvmpipe when there is no GPU).
+    if (!self->context_ && !(get_platform_display && has_ext(client_exts, "EGL_MESA_platform_surfaceless")))
+        tried += "  EGL surfaceless: not offered by this EGL (no EGL_MESA_platform_surfaceless; is Mesa's EGL installed?)\n";
     if (!self->context_ && get_platform_display && has_ext(client_exts, "EGL_MESA_platform_surfaceless")) {
         EGLDisplay dpy = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         std::string why = "no display";

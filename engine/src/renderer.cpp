@@ -1,5 +1,7 @@
 #include "renderer.hpp"
 
+#include "util/atomic_file.hpp"
+
 #include "executor.hpp"
 #include "formats.hpp"
 #include "image_io.hpp"
@@ -9,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 namespace fs = std::filesystem;
@@ -121,6 +124,7 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
     for (int w = 0; w < opt.warmup; ++w) exec.run_frame({index++, times.front(), camera_at(times.front())});
 
     Progress progress("frames", times.size(), opt.quiet);
+    std::set<std::string> cleaned;  // output folders cleared of stale temps
     for (size_t i = 0; i < times.size(); ++i) {
         double t = times[i];
         exec.run_frame({index++, t, camera_at(t)});
@@ -143,6 +147,9 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     file += fi && (fi->is_float || fi->depth) ? ".exr" : ".png";
                 }
                 ensure_parent_dir(file);
+                // Once per folder: temps of a render that was killed are not left lying around.
+                if (cleaned.insert(fs::path(file).parent_path().string()).second)
+                    remove_stale_temps(fs::path(file).parent_path().string());
                 write_image(file, img);
                 res.files.push_back(file);
             }

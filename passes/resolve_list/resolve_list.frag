@@ -69,10 +69,9 @@ void main() {
         col[j] = node.x;
         lid[j] = id;
     }
-    if (len > 0u) {
-        atomicMax(peak_nodes, len);
-        if (len > uint(K)) atomicAdd(truncated_pixels, 1u);
-    }
+    // A plain read first: the peak only grows, so most pixels need no (contended) atomic.
+    if (len > peak_nodes) atomicMax(peak_nodes, len);
+    if (len > uint(K)) atomicAdd(truncated_pixels, 1u);
     float core = u_use_ao != 0 ? texelFetch(u_core, p, 0).w : 1.0;
     float ao = u_use_ao != 0 ? texelFetch(u_ao, p, 0).r : 1.0;
     vec3 lit = vec3(0.0), unlit = vec3(0.0);

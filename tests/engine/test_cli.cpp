@@ -1,5 +1,7 @@
 // The command line: exit codes (0 ok, 1 failed work, 2 bad usage), help that teaches,
 // errors that name the file and place, and nothing half-written.
+#include "image_io.hpp"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -19,14 +21,14 @@ struct CliRun {
     std::string out, err;
 };
 
-CliRun pathlet(const std::string& args) {
+CliRun pathlet_cli(const std::string& args, const std::string& env = "") {
     fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs";
     fs::create_directories(dir);
     // ctest runs tests in parallel processes: each run gets its own files.
     static int counter = 0;
     std::string tag = std::to_string(::getpid()) + "_" + std::to_string(counter++);
     std::string out = (dir / ("out_" + tag + ".txt")).string(), err = (dir / ("err_" + tag + ".txt")).string();
-    std::string cmd = std::string(PATHLET_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+    std::string cmd = env + (env.empty() ? "" : " ") + std::string(PATHLET_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
     int status = std::system(cmd.c_str());
     CliRun r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
@@ -46,7 +48,7 @@ std::string src(const std::string& rel) { return std::string(PATHLET_SOURCE_DIR)
 }  // namespace
 
 TEST(Cli, NoArgumentsPrintsOverviewAndExits2) {
-    CliRun r = pathlet("");
+    CliRun r = pathlet_cli("");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.out.find("commands:"), std::string::npos);
     EXPECT_NE(r.out.find("render"), std::string::npos);
@@ -54,7 +56,7 @@ TEST(Cli, NoArgumentsPrintsOverviewAndExits2) {
 
 TEST(Cli, HelpExitsZeroAndTeachesWithExamples) {
     for (const char* cmd : {"render", "passes", "validate", "graph", "bench"}) {
-        CliRun r = pathlet(std::string(cmd) + " --help");
+        CliRun r = pathlet_cli(std::string(cmd) + " --help");
         EXPECT_EQ(r.code, 0) << cmd;
         EXPECT_NE(r.out.find("usage: pathlet " + std::string(cmd)), std::string::npos) << cmd;
         EXPECT_NE(r.out.find("examples:"), std::string::npos) << cmd;
@@ -62,27 +64,27 @@ TEST(Cli, HelpExitsZeroAndTeachesWithExamples) {
 }
 
 TEST(Cli, UnknownCommandAndOptionExit2WithAHint) {
-    EXPECT_EQ(pathlet("rendr").code, 2);
-    CliRun r = pathlet("render --siz 10x10");
+    EXPECT_EQ(pathlet_cli("rendr").code, 2);
+    CliRun r = pathlet_cli("render --siz 10x10");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("did you mean --size"), std::string::npos) << r.err;
-    r = pathlet("render --size 10by10");
+    r = pathlet_cli("render --size 10by10");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("WIDTHxHEIGHT"), std::string::npos) << r.err;
-    r = pathlet("render --time 5:1");
+    r = pathlet_cli("render --time 5:1");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("END is before START"), std::string::npos) << r.err;
 }
 
 TEST(Cli, PassesListsTypesWithFilesAndDescribes) {
-    CliRun r = pathlet("passes");
+    CliRun r = pathlet_cli("passes");
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("blur"), std::string::npos);
     EXPECT_NE(r.out.find("blur.so"), std::string::npos);
-    r = pathlet("passes --describe blur");
+    r = pathlet_cli("passes --describe blur");
     EXPECT_EQ(r.code, 0);
     EXPECT_NE(r.out.find("radius (int, default 4, range [0, 64])"), std::string::npos) << r.out;
-    r = pathlet("passes --describe blurr");
+    r = pathlet_cli("passes --describe blurr");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("did you mean 'blur'"), std::string::npos) << r.err;
 }
@@ -93,22 +95,22 @@ TEST(Cli, ValidateReportsEveryErrorWithPointerAndExits1) {
       "passes": [{"name": "a", "type": "blurr", "outputs": {"dst": "x"}},
                  {"name": "b", "type": "blur", "params": {"radius": 1000}, "inputs": {"src": "nowhere"}}],
       "outputs": [{"resource": "x"}]})";
-    CliRun r = pathlet("validate " + bad.string());
+    CliRun r = pathlet_cli("validate " + bad.string());
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find(bad.string() + ":/passes/0/type"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("did you mean 'blur'"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("/passes/1/params/radius"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("/passes/1/inputs/src"), std::string::npos) << r.err;
-    EXPECT_EQ(pathlet("validate " + src("graphs/demo_blur.json")).code, 0);
+    EXPECT_EQ(pathlet_cli("validate " + src("graphs/demo_blur.json")).code, 0);
 }
 
 TEST(Cli, GraphPlanAndDot) {
-    CliRun r = pathlet("graph " + src("graphs/demo_blur.json") + " --plan --size 64x64");
+    CliRun r = pathlet_cli("graph " + src("graphs/demo_blur.json") + " --plan --size 64x64");
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("unused"), std::string::npos);  // the culled pass is explained
     fs::path dot = fs::path(PATHLET_TEST_BINARY_DIR) / "demo.dot";
     fs::remove(dot);
-    r = pathlet("graph " + src("graphs/demo_blur.json") + " --dot " + dot.string());
+    r = pathlet_cli("graph " + src("graphs/demo_blur.json") + " --dot " + dot.string());
     EXPECT_EQ(r.code, 0) << r.err;
     std::ifstream in(dot);
     std::string first;
@@ -119,7 +121,7 @@ TEST(Cli, GraphPlanAndDot) {
 TEST(Cli, RenderWritesImagesAndTimingTable) {
     fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_render";
     fs::remove_all(out);
-    CliRun r = pathlet("render " + src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
+    CliRun r = pathlet_cli("render " + src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
                     " --time 0:1:0.5 --size 48x32 --out " + out.string() + " --quiet --report " +
                     (out / "timing").string());
     ASSERT_EQ(r.code, 0) << r.err;
@@ -133,16 +135,16 @@ TEST(Cli, RenderWritesImagesAndTimingTable) {
 }
 
 TEST(Cli, RenderWithMissingDataOrGraphFailsWith1) {
-    CliRun r = pathlet("render " + src("graphs/demo_blur.json") + " --data /no/such/file.vtk --quiet");
+    CliRun r = pathlet_cli("render " + src("graphs/demo_blur.json") + " --data /no/such/file.vtk --quiet");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/no/such/file.vtk"), std::string::npos) << r.err;
-    r = pathlet("render /no/such/graph.json --data " + src("tests/engine/data/two_lines.vtk") + " --quiet");
+    r = pathlet_cli("render /no/such/graph.json --data " + src("tests/engine/data/two_lines.vtk") + " --quiet");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/no/such/graph.json"), std::string::npos) << r.err;
 }
 
 TEST(Cli, BadSetOverrideIsReported) {
-    CliRun r = pathlet("render " + src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
+    CliRun r = pathlet_cli("render " + src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
                     " --set soft.radiuss=2 --no-images --quiet --time 0");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;  // did you mean
@@ -153,36 +155,36 @@ TEST(Cli, PhantomTraceAndInfoRoundTrip) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     std::string lines = (dir / "small.vtp").string(), wall = (dir / "small.glb").string();
-    CliRun r = pathlet("phantom --preset small -o " + lines + " --wall " + wall);
+    CliRun r = pathlet_cli("phantom --preset small -o " + lines + " --wall " + wall);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(lines));
     EXPECT_TRUE(fs::exists(wall));
-    r = pathlet("info " + lines);
+    r = pathlet_cli("info " + lines);
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("lines:"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("time (1 comp)"), std::string::npos) << r.out;
-    r = pathlet("info " + wall);
+    r = pathlet_cli("info " + wall);
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("triangles"), std::string::npos) << r.out;
     // The traced file renders, with its wall loaded.
-    r = pathlet("render isl --data " + lines + " --mesh " + wall + " --time 1 --size 32x24 --no-images --quiet");
+    r = pathlet_cli("render isl --data " + lines + " --mesh " + wall + " --time 1 --size 32x24 --no-images --quiet");
     EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST(Cli, DataCommandsRejectBadInputWithExitCodes) {
     const std::string scratch = (fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs").string();
-    EXPECT_EQ(pathlet("phantom --preset huge -o " + scratch + "/x.vtp").code, 2);
-    EXPECT_EQ(pathlet("phantom --preset small").code, 2);  // no output
-    CliRun r = pathlet("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt").string());
+    EXPECT_EQ(pathlet_cli("phantom --preset huge -o " + scratch + "/x.vtp").code, 2);
+    EXPECT_EQ(pathlet_cli("phantom --preset small").code, 2);  // no output
+    CliRun r = pathlet_cli("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt").string());
     EXPECT_EQ(r.code, 1);  // unknown output extension: a clear error, nothing written
     EXPECT_NE(r.err.find("x.txt"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(fs::path(PATHLET_TEST_BINARY_DIR) / "x.txt"));
-    r = pathlet("trace /no/such/field.vtk -o " + scratch + "/y.vtp");
+    r = pathlet_cli("trace /no/such/field.vtk -o " + scratch + "/y.vtp");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/no/such/field.vtk"), std::string::npos) << r.err;
     fs::path bad = fs::path(PATHLET_TEST_BINARY_DIR) / "truncated.vtk";
     std::ofstream(bad) << "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\nPOINTS 10 float\n0 0 0 1 1";
-    r = pathlet("info " + bad.string());
+    r = pathlet_cli("info " + bad.string());
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
 }
@@ -192,7 +194,7 @@ TEST(Cli, EveryShippedGraphValidates) {
     for (const auto& e : fs::directory_iterator(src("graphs")))
         if (e.path().extension() == ".json") files += " " + e.path().string();
     ASSERT_FALSE(files.empty());
-    CliRun r = pathlet("validate" + files);
+    CliRun r = pathlet_cli("validate" + files);
     EXPECT_EQ(r.code, 0) << r.err;
     for (const char* g : {"variant1_lineao", "isl", "lineao_debug", "gbuffer_only", "demo_blur"})
         EXPECT_NE(r.out.find(std::string(g) + ".json: ok"), std::string::npos) << g;
@@ -201,7 +203,7 @@ TEST(Cli, EveryShippedGraphValidates) {
 TEST(Cli, CaptureWithoutExtensionPicksExrForFloatAndPngOtherwise) {
     fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_capture_formats";
     fs::remove_all(out);
-    CliRun r = pathlet("render " + src("tests/engine/graphs/capture_formats.json") + " --data " +
+    CliRun r = pathlet_cli("render " + src("tests/engine/graphs/capture_formats.json") + " --data " +
                        src("tests/engine/data/two_lines.vtk") + " --time 0 --size 24x16 --quiet --out " + out.string());
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(out / "blurred_000.png"));
@@ -210,7 +212,7 @@ TEST(Cli, CaptureWithoutExtensionPicksExrForFloatAndPngOtherwise) {
 
 TEST(Cli, OutputPlacesAreCheckedBeforeAnyWork) {
     // A folder that cannot be created: the error names it and comes before GL or data loading.
-    CliRun r = pathlet("render --out /proc/pathlet_no_such --time 1 --size 32x24");
+    CliRun r = pathlet_cli("render --out /proc/pathlet_no_such --time 1 --size 32x24");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/proc/pathlet_no_such"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("GL renderer"), std::string::npos) << "failed only after GL set-up:\n" << r.err;
@@ -218,21 +220,21 @@ TEST(Cli, OutputPlacesAreCheckedBeforeAnyWork) {
     // --out naming a file, --report and --video into impossible places.
     fs::path file = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "a_file.txt";
     std::ofstream(file) << "x";
-    r = pathlet("render --out " + file.string() + " --time 1 --size 32x24");
+    r = pathlet_cli("render --out " + file.string() + " --time 1 --size 32x24");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("not a folder"), std::string::npos) << r.err;
-    r = pathlet("render --no-images --report /proc/none/t --time 1 --size 32x24");
+    r = pathlet_cli("render --no-images --report /proc/none/t --time 1 --size 32x24");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("--report"), std::string::npos) << r.err;
-    r = pathlet("bench isl --report /proc/none/b --size 32x24 --frames 1 --warmup 0");
+    r = pathlet_cli("bench isl --report /proc/none/b --size 32x24 --frames 1 --warmup 0");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/proc/none"), std::string::npos) << r.err;
     // phantom and trace: before tracing.
-    r = pathlet("phantom --preset small -o /proc/none/p.vtp");
+    r = pathlet_cli("phantom --preset small -o /proc/none/p.vtp");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/proc/none"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("tracing"), std::string::npos) << "failed only after tracing:\n" << r.err;
-    r = pathlet("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "p.vtp").string() +
+    r = pathlet_cli("phantom --preset small -o " + (fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "p.vtp").string() +
                 " --wall /proc/none/w.glb");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/proc/none/w.glb"), std::string::npos) << r.err;
@@ -240,14 +242,14 @@ TEST(Cli, OutputPlacesAreCheckedBeforeAnyWork) {
 
 TEST(Cli, BadSizesAndDirectoriesAreClearErrors) {
     for (const char* size : {"0x0", "-5x10", "100000x100000", "axb"}) {
-        CliRun r = pathlet(std::string("render --size ") + size + " --no-images");
+        CliRun r = pathlet_cli(std::string("render --size ") + size + " --no-images");
         EXPECT_EQ(r.code, 2) << size;
         EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
     }
-    CliRun r = pathlet("validate " + std::string(PATHLET_TEST_BINARY_DIR));
+    CliRun r = pathlet_cli("validate " + std::string(PATHLET_TEST_BINARY_DIR));
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
-    r = pathlet("info " + std::string(PATHLET_TEST_BINARY_DIR));
+    r = pathlet_cli("info " + std::string(PATHLET_TEST_BINARY_DIR));
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 }
@@ -255,7 +257,7 @@ TEST(Cli, BadSizesAndDirectoriesAreClearErrors) {
 TEST(Cli, PathsWithSpacesAndNonUtf8BytesWork) {
     fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "with space \xff\xfe dir";
     fs::remove_all(dir);
-    CliRun r = pathlet("render isl --data '" + src("tests/engine/data/two_lines.vtk") + "' --out '" + dir.string() +
+    CliRun r = pathlet_cli("render isl --data '" + src("tests/engine/data/two_lines.vtk") + "' --out '" + dir.string() +
                        "' --time 0.5 --size 32x24 --quiet");
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir / "isl" / "00000.png"));
@@ -265,16 +267,52 @@ TEST(Cli, PathsWithSpacesAndNonUtf8BytesWork) {
 TEST(Cli, BenchSetsCanTargetOneGraph) {
     const std::string common = " --data " + src("tests/engine/data/two_lines.vtk") + " --time 0.5 --size 32x24 --frames 1 --warmup 0";
     // The same graph twice, set differently: both rows, labelled.
-    CliRun r = pathlet("bench isl,isl --set 2:window=0" + common);
+    CliRun r = pathlet_cli("bench isl,isl --set 2:window=0" + common);
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("isl [window=0]"), std::string::npos) << r.out;
     // A parameter only one graph has, given to that graph only.
-    r = pathlet("bench isl,variant3_geomfade --set variant3_geomfade:tail_fade=0.2" + common);
+    r = pathlet_cli("bench isl,variant3_geomfade --set variant3_geomfade:tail_fade=0.2" + common);
     EXPECT_EQ(r.code, 0) << r.err;
-    r = pathlet("bench isl,variant3_geomfade --set tail_fade=0.2" + common);
+    r = pathlet_cli("bench isl,variant3_geomfade --set tail_fade=0.2" + common);
     EXPECT_EQ(r.code, 1) << "unqualified: every graph must have it";
     // A qualifier naming no listed graph: a usage error before any work.
-    r = pathlet("bench isl --set 3:window=0" + common);
+    r = pathlet_cli("bench isl --set 3:window=0" + common);
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("none of the graphs"), std::string::npos) << r.err;
+}
+
+TEST(Cli, NoEglIsAClearErrorNotACrash) {
+    // glvnd with no vendor library: no EGL implementation at all.
+    CliRun r = pathlet_cli("render --time 1 --size 32x24 --no-images --quiet", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("cannot create a headless OpenGL 4.5 context"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("not offered"), std::string::npos) << "says what was tried:\n" << r.err;
+    EXPECT_NE(r.err.find("Install Mesa"), std::string::npos) << r.err;
+}
+
+TEST(Cli, KilledMidRenderLeavesOnlyCompleteFiles) {
+    // Frames are written to a hidden temporary name and renamed: a SIGKILL at any moment
+    // leaves complete PNGs under their final names; the next render clears the stale temps.
+    fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "killed";
+    fs::remove_all(dir);
+    const std::string cmd = "timeout -s KILL 2 " + std::string(PATHLET_CLI) + " render isl --data " +
+                            src("tests/engine/data/two_lines.vtk") + " --time 0:1000:0.01 --size 320x240 --quiet --out " +
+                            dir.string() + " >/dev/null 2>&1";
+    int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 137) << "the render should have been killed";
+    size_t complete = 0;
+    for (const auto& e : fs::directory_iterator(dir / "isl")) {
+        const std::string name = e.path().filename().string();
+        if (name[0] == '.') continue;  // a temp of the killed process
+        pathlet::Image img = pathlet::read_image(e.path().string());
+        EXPECT_EQ(img.width, 320) << name;
+        ++complete;
+    }
+    EXPECT_GT(complete, 0u);
+    CliRun r = pathlet_cli("render isl --data " + src("tests/engine/data/two_lines.vtk") + " --time 0 --size 32x24 --quiet --out " +
+                       dir.string());
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const auto& e : fs::directory_iterator(dir / "isl"))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "stale temp left: " << e.path();
+    fs::remove_all(dir);
 }

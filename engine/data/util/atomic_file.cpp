@@ -3,6 +3,9 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 #include <unistd.h>
@@ -17,6 +20,19 @@ std::string temp_path_for(const std::string& path) {
     std::string name = "." + p.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                        std::to_string(counter++) + p.extension().string();
     return (p.parent_path() / name).string();
+}
+
+void remove_stale_temps(const std::string& dir) {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        const size_t at = name.find(".tmp-");
+        if (name.empty() || name[0] != '.' || at == std::string::npos) continue;
+        const long pid = std::atol(name.c_str() + at + 5);
+        if (pid <= 0 || pid == long(::getpid())) continue;
+        if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // still running (or not ours to judge)
+        fs::remove(e.path(), ec);
+    }
 }
 
 void commit_temp(const std::string& tmp, const std::string& path) {

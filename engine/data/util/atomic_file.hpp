@@ -13,6 +13,10 @@ namespace pathlet {
 // a format by extension, like OpenImageIO, still work): "dir/.name.tmp-1234-0.png".
 std::string temp_path_for(const std::string& path);
 
+// Removes temporaries (".name.tmp-PID-N.ext") in `dir` whose writing process no longer runs:
+// what a killed render leaves. Files under their final names are always complete.
+void remove_stale_temps(const std::string& dir);
+
 // Renames tmp to path; on failure removes tmp and throws std::runtime_error naming both.
 void commit_temp(const std::string& tmp, const std::string& path);
 
