@@ -8,22 +8,15 @@ namespace {
 
 namespace lines = pathlet::lines;
 
-class FadeCore : public lines::GBufferPass {
+class FadeCore : public lines::EndFadePass {
 public:
-    FadeCore() : GBufferPass({.color = "fade_core.frag"}) {}
-    void setup(pathlet::PassContext& ctx) override {
-        GBufferPass::setup(ctx);
-        fade_.setup(ctx);
-    }
+    FadeCore() : EndFadePass({.color = "fade_core.frag"}) {}
 
 protected:
     void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& prog) override {
-        fade_.set_uniforms(ctx, prog);
+        EndFadePass::set_uniforms(ctx, prog);
         prog.set("u_core_alpha", ctx.params().f("core_alpha"));
     }
-
-private:
-    lines::EndFade fade_;
 };
 
 pathlet::PassTypeInfo fade_core_type() {

@@ -8,22 +8,9 @@ namespace {
 
 namespace lines = pathlet::lines;
 
-class GeometricFade : public lines::GBufferPass {
+class GeometricFade : public lines::EndFadePass {
 public:
-    GeometricFade() : GBufferPass({.width = "taper_width.geom"}) {}
-
-    void setup(pathlet::PassContext& ctx) override {
-        GBufferPass::setup(ctx);
-        fade_.setup(ctx);
-    }
-
-protected:
-    void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& prog) override {
-        fade_.set_uniforms(ctx, prog);
-    }
-
-private:
-    lines::EndFade fade_;
+    GeometricFade() : EndFadePass({.width = "taper_width.geom"}) {}
 };
 
 pathlet::PassTypeInfo geometric_fade_type() {

@@ -27,23 +27,7 @@ const float kPxPerUnit = square_on_pixels_per_unit(kSize.y);
 
 Runtime& rt() { return test_runtime({PATHLET_TEST_PLUGIN_DIR}); }
 
-// Per-process scratch folder, removed when the test binary ends.
-fs::path scratch_dir() {
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("pathlet_fades_" + std::to_string(::getpid()));
-        fs::create_directories(p);
-        struct Cleanup : ::testing::Environment {
-            fs::path dir;
-            explicit Cleanup(fs::path p) : dir(std::move(p)) {}
-            void TearDown() override { fs::remove_all(dir); }
-        };
-        ::testing::AddGlobalTestEnvironment(new Cleanup(p));
-        return p;
-    }();
-    return d;
-}
-
-std::string scratch(const std::string& name) { return (scratch_dir() / name).string(); }
+std::string scratch(const std::string& name) { return test_scratch_dir("pathlet_fades") + "/" + name; }
 
 const std::string& camera_file() {
     static const std::string path = write_square_on_camera(scratch("camera.json"));

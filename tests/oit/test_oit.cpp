@@ -23,20 +23,7 @@ const std::string kSrc = PATHLET_SOURCE_DIR;
 const std::string kHere = PATHLET_TEST_SOURCE_DIR;
 const glm::ivec2 kSmall{160, 120};
 
-const std::string& scratch() {
-    static const std::string d = [] {
-        fs::path p = fs::temp_directory_path() / ("pathlet_oit_" + std::to_string(::getpid()));
-        fs::create_directories(p);
-        struct Cleanup : ::testing::Environment {
-            fs::path dir;
-            explicit Cleanup(fs::path p) : dir(std::move(p)) {}
-            void TearDown() override { fs::remove_all(dir); }
-        };
-        ::testing::AddGlobalTestEnvironment(new Cleanup(p));
-        return p.string();
-    }();
-    return d;
-}
+const std::string& scratch() { return test_scratch_dir("pathlet_oit"); }
 
 Frame render(const std::string& graph, std::vector<std::string> sets, const std::vector<std::string>& names,
              double t = 6.0, const Scene& scene = helix_bundle_scene(), glm::ivec2 size = kSmall) {

@@ -3,6 +3,10 @@
 #include "executor.hpp"
 
 #include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
 #include <fstream>
 
 namespace pathlet {
@@ -95,6 +99,22 @@ const Scene& helix_bundle_scene() {
         return s;
     }();
     return scene;
+}
+
+const std::string& test_scratch_dir(const std::string& prefix) {
+    static const std::string dir = [&] {
+        namespace fs = std::filesystem;
+        fs::path p = fs::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
+        fs::create_directories(p);
+        struct Cleanup : ::testing::Environment {
+            fs::path dir;
+            explicit Cleanup(fs::path d) : dir(std::move(d)) {}
+            void TearDown() override { fs::remove_all(dir); }
+        };
+        ::testing::AddGlobalTestEnvironment(new Cleanup(p));
+        return p.string();
+    }();
+    return dir;
 }
 
 const Scene& two_speed_lines_scene() {

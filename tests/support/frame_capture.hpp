@@ -36,6 +36,9 @@ Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std
 // and one isolated, gently waving line beside it; times 0..10 s, 101 points per line.
 const Scene& helix_bundle_scene();
 
+// A per-process scratch folder "<tmp>/<prefix>_<pid>", removed when the test binary ends.
+const std::string& test_scratch_dir(const std::string& prefix);
+
 // Two straight pathlets, times 0..10 s (201 points each): a fast one, x = -15 + 4t on y = 0
 // (40 units long), and a slow one, x = t on y = 4 (10 units long).
 const Scene& two_speed_lines_scene();

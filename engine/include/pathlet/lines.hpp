@@ -126,4 +126,20 @@ protected:
     bool write_id_ = false;
 };
 
+// A G-buffer line pass whose hook uses the kit's end fade (line_fade.glsl): geometric_fade
+// tapers the width with it, fade_core keeps the opaque core. Declare its parameters with
+// declare_fade_params; override set_uniforms (calling this one) to add your own.
+class EndFadePass : public GBufferPass {
+public:
+    using GBufferPass::GBufferPass;
+    void setup(PassContext& ctx) override {
+        GBufferPass::setup(ctx);
+        fade_.setup(ctx);
+    }
+
+protected:
+    void set_uniforms(PassContext& ctx, const ShaderProgram& prog) override { fade_.set_uniforms(ctx, prog); }
+    EndFade fade_;
+};
+
 }  // namespace pathlet::lines
