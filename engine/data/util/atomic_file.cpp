@@ -8,36 +8,68 @@
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <map>
+#include <mutex>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
 
 namespace pathlet {
 
+namespace {
+// Temps this process is writing, each held under an flock: the kernel drops the lock when the
+// process dies (even by SIGKILL), so a temp nobody holds is a leftover, whatever its PID says
+// (PIDs wrap and are reused within seconds on a busy machine).
+std::mutex g_temps_mutex;
+std::map<std::string, int> g_temps;
+
+void release_temp(const std::string& tmp) {
+    std::lock_guard<std::mutex> lock(g_temps_mutex);
+    auto it = g_temps.find(tmp);
+    if (it == g_temps.end()) return;
+    ::close(it->second);  // also releases the flock
+    g_temps.erase(it);
+}
+}  // namespace
+
 std::string temp_path_for(const std::string& path) {
     static std::atomic<int> counter{0};
     fs::path p(path);
     std::string name = "." + p.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                        std::to_string(counter++) + p.extension().string();
-    return (p.parent_path() / name).string();
+    std::string tmp = (p.parent_path() / name).string();
+    int fd = ::open(tmp.c_str(), O_CREAT | O_WRONLY | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+        ::flock(fd, LOCK_EX);
+        std::lock_guard<std::mutex> lock(g_temps_mutex);
+        g_temps[tmp] = fd;
+    }  // (a folder that cannot take it fails with a clear error when the writer opens it)
+    return tmp;
 }
 
 void remove_stale_temps(const std::string& dir) {
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
         const std::string name = e.path().filename().string();
-        const size_t at = name.find(".tmp-");
-        if (name.empty() || name[0] != '.' || at == std::string::npos) continue;
-        const long pid = std::atol(name.c_str() + at + 5);
-        if (pid <= 0 || pid == long(::getpid())) continue;
-        if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // still running (or not ours to judge)
-        fs::remove(e.path(), ec);
+        if (name.empty() || name[0] != '.' || name.find(".tmp-") == std::string::npos) continue;
+        {
+            std::lock_guard<std::mutex> lock(g_temps_mutex);
+            if (g_temps.count(e.path().string())) continue;  // ours, being written
+        }
+        int fd = ::open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) continue;
+        const bool orphan = ::flock(fd, LOCK_EX | LOCK_NB) == 0;  // its writer is gone
+        if (orphan) fs::remove(e.path(), ec);
+        ::close(fd);
     }
 }
 
 void commit_temp(const std::string& tmp, const std::string& path) {
     std::error_code ec;
     fs::rename(tmp, path, ec);
+    release_temp(tmp);
     if (ec) {
         fs::remove(tmp, ec);
         throw std::runtime_error(path + ": cannot move finished file into place from " + tmp + ": " + ec.message());
@@ -58,6 +90,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
     } catch (...) {
         std::error_code ec;
         fs::remove(tmp, ec);
+        release_temp(tmp);
         throw;
     }
 }
