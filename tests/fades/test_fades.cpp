@@ -297,3 +297,69 @@ TEST(PassDocs, ReadmeTablesMatchTheDeclarations) {
     }
     EXPECT_GE(checked, 10u);
 }
+
+// ---- aorta_backface: the wall as context behind the lines ---------------------------------
+
+namespace {
+// The helix bundle inside a closed tube (radius 5 around the x axis, x = -2..42), outward
+// normals, like a vessel wall around its pathlines.
+const Scene& bundle_in_a_tube() {
+    static const Scene scene = [] {
+        Scene s = helix_bundle_scene();
+        Mesh m;
+        const int ring = 32, rows = 12;
+        for (int r = 0; r <= rows; ++r)
+            for (int k = 0; k < ring; ++k) {
+                float a = 6.2831853f * float(k) / float(ring), x = -2.0f + 44.0f * float(r) / float(rows);
+                m.position.push_back({x, 5.0f * std::cos(a), 5.0f * std::sin(a)});
+                m.normal.push_back({0.0f, std::cos(a), std::sin(a)});
+            }
+        for (int r = 0; r < rows; ++r)
+            for (int k = 0; k < ring; ++k) {
+                uint32_t a = uint32_t(r * ring + k), b = uint32_t(r * ring + (k + 1) % ring), c = a + uint32_t(ring),
+                         d = b + uint32_t(ring);
+                m.index.insert(m.index.end(), {a, b, d, a, d, c});
+            }
+        s.mesh = m;
+        s.source = "helix bundle in a tube (test_fades)";
+        return s;
+    }();
+    return scene;
+}
+
+Frame render_v1(const Scene& scene, std::vector<std::string> sets) {
+    RenderOptions opt;
+    opt.graph_path = kSrc + "/graphs/variant1_lineao.json";
+    sets.insert(sets.begin(), {"window=3", "line_width=1.2"});
+    opt.sets = sets;
+    opt.size = {160, 120};
+    opt.time.start = 6.0;
+    return render_frame(rt(), scene, opt, {"final", "lit"});
+}
+}  // namespace
+
+TEST(AortaBackface, WallOffOrNoWallIsTodaysImageBitForBit) {
+    // "lit" is the image the graph ended with before the wall pass existed.
+    Frame none = render_v1(helix_bundle_scene(), {});
+    Frame off = render_v1(bundle_in_a_tube(), {"wall=false"});
+    EXPECT_EQ(off["final"].pixels, off["lit"].pixels) << "wall=false passes the image through";
+    EXPECT_EQ(none["final"].pixels, none["lit"].pixels) << "without a mesh the pass only copies";
+    // (tests/lineao's variant-1 golden, rendered through this graph, guards the unchanged look.)
+}
+
+TEST(AortaBackface, WallShowsBehindTheLinesAndNeverChangesThem) {
+    Frame on = render_v1(bundle_in_a_tube(), {});
+    Frame off = render_v1(bundle_in_a_tube(), {"wall=false"});
+    const Image &a = on["final"], &b = off["final"], &lit = on["lit"];
+    EXPECT_EQ(lit.pixels, off["lit"].pixels) << "the wall must not touch LineAO or the lines";
+    size_t wall = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const bool line = lit.at(x, y, 3) > 0.5f;
+            for (int c = 0; c < 4; ++c)
+                if (line) ASSERT_EQ(a.at(x, y, c), b.at(x, y, c)) << "a line pixel changed at " << x << "," << y;
+            if (!line && a.at(x, y, 3) == 1.0f && b.at(x, y, 3) == 0.0f) ++wall;
+        }
+    EXPECT_GT(wall, 500u) << "the wall should show around and between the lines";
+    EXPECT_TRUE(matches_golden(a, kHere + "/goldens/variant1_wall.png"));
+}

@@ -99,8 +99,8 @@ TEST(lines, GbufferBackgroundIsExactlyTheContract) {
 }
 
 TEST(lines, IslBackgroundIsExactlyTheBackgroundColour) {
-    Frame f = render_frame("isl.json", 5.0, {"line_width=1.2", "isl.background=#336699"}, {"final", "isl.depth"});
-    const Image &c = f["final"], &d = f["isl.depth"];
+    Frame f = render_frame("isl.json", 5.0, {"line_width=1.2", "isl.background=#336699"}, {"final", "depth"});
+    const Image &c = f["final"], &d = f["depth"];
     size_t bg = 0, lines = 0;
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {

@@ -37,8 +37,8 @@ constexpr GLuint kPathletBinding = 7;
 // GLSL hook files, found on the shader path (the pass's own folder first). Empty: the kit's
 // default (full width; the colour map as it is).
 struct Hooks {
-    std::string width;  // .geom defining float line_width_hook(LinePoint p)
-    std::string color;  // .frag defining vec4 line_color_hook(vec4 rgba, LinePoint p)
+    std::string width = {};  // .geom defining float line_width_hook(LinePoint p)
+    std::string color = {};  // .frag defining vec4 line_color_hook(vec4 rgba, LinePoint p)
 };
 
 // Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl.

@@ -1,0 +1,88 @@
+// aorta_backface: the vessel wall as context behind the lines (the study's figures). It draws
+// after the lighting, over the finished image, depth-tested against the G-buffer depth, so the
+// wall shows only where no line is in front and never enters LineAO (no darkened lines, the
+// study's Fig. 11c). With show = false, or a scene without a wall, the image passes through
+// bit for bit.
+#include <pathlet/gpu_scene.hpp>
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+namespace {
+
+const std::vector<std::string> kModes{"backfaces", "whole"};
+
+class AortaBackface : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &ctx.program({"aorta_backface.vert", "aorta_backface.frag"});
+        normal_sign_ = outward_sign(ctx.scene().cpu());
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const pathlet::Params& p = ctx.params();
+        pathlet::Texture src = ctx.texture("color"), dst = ctx.texture("final");
+        glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width, dst.height, 1);
+        const pathlet::GpuScene& scene = ctx.scene();
+        if (!p.b("show") || !scene.has_mesh()) return;
+        ctx.bind_framebuffer({"final"}, "depth");
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_FALSE);  // the G-buffer depth stays as it is
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_BLEND);
+        // Colour: opacity over what is there; alpha: 1 where the wall is (the background's alpha
+        // is 0, and an image viewer would show a transparent wall).
+        glBlendColor(0.0f, 0.0f, 0.0f, p.f("opacity"));
+        glBlendFuncSeparate(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA, GL_ONE, GL_ZERO);
+        prog_->use();
+        prog_->set("u_view", ctx.camera().view);
+        prog_->set("u_proj", ctx.camera().proj);
+        prog_->set("u_color", p.v3("wall_color"));
+        prog_->set("u_backfaces_only", p.s("mode") == "backfaces" ? 1 : 0);
+        prog_->set("u_normal_sign", normal_sign_);
+        glBindVertexArray(scene.mesh_vao());
+        glDrawElements(GL_TRIANGLES, scene.mesh_index_count(), GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(0);
+        glDisable(GL_BLEND);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_DEPTH_TEST);
+        ctx.stat("wall triangles", double(scene.mesh_index_count() / 3));
+    }
+
+private:
+    // +1 when the mesh's normals point out of the vessel, -1 when in (marching cubes and
+    // exporters differ): the winding's signed volume says which way is out, and the normals
+    // either agree with the winding or not.
+    static float outward_sign(const pathlet::Scene& s) {
+        if (!s.mesh || s.mesh->empty() || s.mesh->normal.size() != s.mesh->position.size()) return 1.0f;
+        const auto& m = *s.mesh;
+        double volume = 0.0, agree = 0.0;
+        for (size_t t = 0; t + 2 < m.index.size(); t += 3) {
+            const glm::dvec3 a = m.position[m.index[t]], b = m.position[m.index[t + 1]], c = m.position[m.index[t + 2]];
+            const glm::dvec3 face = glm::cross(b - a, c - a);
+            volume += glm::dot(a, glm::cross(b, c));
+            agree += glm::dot(face, glm::dvec3(m.normal[m.index[t]] + m.normal[m.index[t + 1]] + m.normal[m.index[t + 2]]));
+        }
+        return (volume > 0.0) == (agree > 0.0) ? 1.0f : -1.0f;
+    }
+
+    pathlet::ShaderProgram* prog_ = nullptr;
+    float normal_sign_ = 1.0f;
+};
+
+}  // namespace
+
+PATHLET_PLUGIN("aorta_backface", {
+    sink->add(pathlet::PassTypeBuilder("aorta_backface",
+                                       "the vessel wall as quiet, lit context behind the lines, over the finished image "
+                                       "(never in LineAO)")
+                  .param_bool("show", true, "draw the wall (false: the image passes through unchanged)")
+                  .param_enum("mode", "backfaces", kModes,
+                              "backfaces: the far side of the vessel, seen through it (the study); whole: every face")
+                  .param_color("wall_color", {0.55f, 0.62f, 0.72f}, "wall colour before shading")
+                  .param_float("opacity", 0.3, 0.0, 1.0, "how strongly the wall covers the background")
+                  .input_texture("color", "rgba8", "the finished image (e.g. bilateral's final)")
+                  .input_texture("depth", "depth24", "the G-buffer depth: lines in front hide the wall")
+                  .output_texture("final", "rgba8", "the image with the wall behind the lines")
+                  .make<AortaBackface>());
+})
