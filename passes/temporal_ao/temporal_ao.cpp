@@ -58,7 +58,7 @@ private:
 pathlet::PassTypeInfo temporal_ao_type() {
     return pathlet::PassTypeBuilder("temporal_ao",
                                     "reprojected temporal accumulation of AO, history rejected by line id and depth")
-        .param_float("alpha", 0.2, 0.0, 1.0, "weight of this frame's AO (1 = no accumulation)")
+        .param_float("alpha", 0.15, 0.0, 1.0, "weight of this frame's AO (1 = no accumulation)")
         .param_float("depth_tolerance", 0.01, 0.0, 1.0,
                      "largest change of normalised linear depth that still counts as the same surface")
         .param_bool("enabled", true, "false: pass this frame's AO through")
