@@ -37,7 +37,11 @@ json read_json(const std::string& path) {
     if (!in) throw std::runtime_error(path + ": cannot read");
     std::stringstream s;
     s << in.rdbuf();
-    return json::parse(s.str(), nullptr, true, /*ignore_comments=*/true);
+    try {
+        return json::parse(s.str(), nullptr, true, /*ignore_comments=*/true);
+    } catch (const json::parse_error& e) {
+        throw std::runtime_error(path + ": not valid JSON: " + e.what());
+    }
 }
 
 // Binds gbuffer.line_id and the AO that reaches the image, and keeps them (outputs without
