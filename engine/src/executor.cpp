@@ -261,7 +261,10 @@ void Executor::setup() {
         Physical prev = make_physical(cg_.slots[size_t(res.slot)], res.name + "@prev");
         // Frame 0 reads an empty history: zero it so it is defined.
         if (prev.tex) {
-            for (int m = 0; m < prev.tex.mips; ++m) glClearTexImage(prev.tex.id, m, GL_RGBA, GL_FLOAT, nullptr);
+            // The clear's pixel format must match the texture's kind (integer formats such as r32i).
+            const FormatInfo* fi = find_format(prev.tex.internal_format);
+            const GLenum fmt = fi ? fi->pixel_format : GL_RGBA, type = fi ? fi->pixel_type : GL_FLOAT;
+            for (int m = 0; m < prev.tex.mips; ++m) glClearTexImage(prev.tex.id, m, fmt, type, nullptr);
         } else {
             glClearNamedBufferData(prev.buf.id, GL_R8, GL_RED, GL_UNSIGNED_BYTE, nullptr);
         }

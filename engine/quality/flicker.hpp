@@ -1,0 +1,20 @@
+#pragma once
+// Temporal flicker (issue 13, measure a): how much the AO changes from frame to frame at pixels
+// whose geometry barely changed, set against how much the geometry itself changed.
+#include "frame_sample.hpp"
+
+namespace pathlet::quality {
+
+struct FlickerStats {
+  std::size_t stable_pixels = 0;    // same line id in both frames, depth within tolerance
+  std::size_t covered_pixels = 0;   // covered by a line in either frame
+  double ao_flicker = 0;       // mean |AO(t) - AO(t-1)| over the stable pixels
+  double geometry_change = 0;  // fraction of covered pixels whose line id or depth changed
+};
+
+// Throws std::invalid_argument when the frames differ in size or are incomplete.
+FlickerStats measure_flicker(const FrameSample& prev, const FrameSample& cur, float depth_tolerance);
+// Mean over consecutive pairs, weighted by stable pixels; needs at least two frames.
+FlickerStats measure_flicker(const std::vector<FrameSample>& frames, float depth_tolerance);
+
+}  // namespace pathlet::quality

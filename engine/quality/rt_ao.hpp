@@ -1,0 +1,41 @@
+#pragma once
+// Ray-traced ambient occlusion reference (issue 13, measure c): the visible pathlets as round
+// tubes (Embree round linear curves with the line radius), cosine-weighted hemisphere rays of a
+// maximum distance. AO = fraction of rays that escape, the same convention as the screen-space
+// term (1 = open). Cosine weighting makes the plain hit fraction the cosine-weighted estimate.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace pathlet::quality {
+
+struct Tube {
+  std::vector<glm::vec3> points;  // polyline, at least two points
+  float radius = 0;
+};
+
+class RayTracedAo {
+ public:
+  explicit RayTracedAo(const std::vector<Tube>& tubes);
+  ~RayTracedAo();
+  RayTracedAo(const RayTracedAo&) = delete;
+  RayTracedAo& operator=(const RayTracedAo&) = delete;
+
+  // Ambient term at `p` (on a surface with normal `n`, outward) from `rays` cosine-weighted rays
+  // no longer than `max_distance`. Deterministic for a given seed.
+  float ambient(const glm::vec3& p, const glm::vec3& n, int rays, float max_distance,
+                uint32_t seed = 1) const;
+  size_t segments() const { return segments_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  size_t segments_ = 0;
+};
+
+// Cosine-weighted direction around unit normal n from two uniforms in [0,1).
+glm::vec3 cosine_direction(const glm::vec3& n, float u1, float u2);
+
+}  // namespace pathlet::quality

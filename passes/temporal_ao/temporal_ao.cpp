@@ -1,0 +1,78 @@
+// temporal_ao: makes LineAO temporally stable in animation (issue 13). Blends this frame's AO
+// with last frame's accumulated AO where the pixel, reprojected with last frame's camera, shows
+// the same line at the expected depth; elsewhere (disocclusion, another line in front, first
+// frame) the history is dropped. Keeps last frame's camera itself, so a moving camera works too.
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+
+namespace {
+
+class TemporalAo : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        prog_ = &ctx.program({"fullscreen.vert", "temporal_ao.frag"});
+        have_prev_ = false;  // a resize or parameter change starts over
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const auto& p = ctx.params();
+        const pathlet::Camera& cam = ctx.camera();
+        if (!have_prev_) prev_ = cam;
+        prog_->use();
+        prog_->set("u_cur_to_prev_view", prev_.view * glm::inverse(cam.view));
+        prog_->set("u_prev_proj", prev_.proj);
+        prog_->set("u_proj_scale", glm::vec2(cam.proj[0][0], cam.proj[1][1]));
+        prog_->set("u_near_far", glm::vec2(cam.near_plane, cam.far_plane));
+        prog_->set("u_prev_near_far", glm::vec2(prev_.near_plane, prev_.far_plane));
+        prog_->set("u_alpha", std::clamp(p.f("alpha"), 0.0f, 1.0f));
+        prog_->set("u_depth_tolerance", p.f("depth_tolerance"));
+        prog_->set("u_history_valid", (have_prev_ && p.b("enabled")) ? 1 : 0);
+        const char* pins[] = {"ao", "ao_prev", "normal_depth", "normal_depth_prev", "line_id", "line_id_prev"};
+        for (GLuint unit = 0; unit < 6; ++unit) glBindTextureUnit(unit, ctx.texture(pins[unit]).id);
+        glDisable(GL_BLEND);
+        if (ctx.connected("depth")) {
+            // Only covered pixels: background AO is never read (bilateral skips it, and the
+            // history is read only where the line id matches).
+            ctx.bind_framebuffer({"ao_acc"}, "depth");
+            ctx.draw_fullscreen_on_geometry(*prog_);
+        } else {
+            glDisable(GL_DEPTH_TEST);
+            ctx.bind_framebuffer({"ao_acc"});
+            ctx.draw_fullscreen();
+        }
+        for (GLuint unit = 0; unit < 6; ++unit) glBindTextureUnit(unit, 0);
+        prev_ = cam;
+        have_prev_ = true;
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+    pathlet::Camera prev_;
+    bool have_prev_ = false;
+};
+
+pathlet::PassTypeInfo temporal_ao_type() {
+    return pathlet::PassTypeBuilder("temporal_ao",
+                                    "reprojected temporal accumulation of AO, history rejected by line id and depth")
+        .param_float("alpha", 0.15, 0.0, 1.0, "weight of this frame's AO (1 = no accumulation)")
+        .param_float("depth_tolerance", 0.01, 0.0, 1.0,
+                     "largest change of normalised linear depth that still counts as the same surface")
+        .param_bool("enabled", true, "false: pass this frame's AO through")
+        .input_texture("ao", "r16f", "this frame's AO (1 = unoccluded)")
+        .input_texture("ao_prev", "r16f", "last frame's accumulated AO: the output's history (ao_acc@prev)")
+        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
+        .input_texture("normal_depth_prev", "rgba16f", "last frame's normal_depth (normal_depth@prev)")
+        .input_texture("line_id", "r32i", "line id per pixel, -1 on background (gbuffer's line_id)")
+        .input_texture("line_id_prev", "r32i", "last frame's line id (line_id@prev)")
+        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped", true)
+        .output_texture("ao_acc", "r16f", "accumulated AO; make it a history resource")
+        .make<TemporalAo>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("temporal_ao", { sink->add(temporal_ao_type()); })
