@@ -53,12 +53,17 @@ Patch patch_graph(json& g) {
     json* lineao = nullptr;
     for (json& pass : g["passes"]) {
         const std::string type = pass.value("type", "");
-        if (type == "gbuffer") gbuffer = &pass;
         if (type == "bilateral") bilateral = &pass;
         if (type == "lineao") lineao = &pass;
     }
-    if (!gbuffer) return {"no gbuffer pass (no line id and depth per pixel to compare frames by)"};
     if (!lineao) return {"no AO in this graph (no lineao pass)"};
+    // The G-buffer is whichever line pass writes what lineao reads as normal_depth: gbuffer,
+    // geometric_fade, fade_core or a fade of yours (every kit G-buffer pass has line_id).
+    const json& lin = (*lineao)["inputs"];
+    const std::string nd = lin.contains("normal_depth") ? lin["normal_depth"].get<std::string>() : "";
+    for (json& pass : g["passes"])
+        if (pass.contains("outputs") && pass["outputs"].value("normal_depth", "") == nd && !nd.empty()) gbuffer = &pass;
+    if (!gbuffer) return {"no G-buffer pass feeding lineao (no line id and depth per pixel to compare frames by)"};
     json& outs = (*gbuffer)["outputs"];
     if (!outs.contains("normal_depth")) return {"gbuffer's normal_depth is not bound"};
     p.normal_depth = outs["normal_depth"];
@@ -69,7 +74,9 @@ Patch patch_graph(json& g) {
         outs["line_id"] = p.line_id;
         g["resources"][p.line_id] = {{"format", "r32i"}};
     }
-    if (bilateral) {
+    if (bilateral && (*bilateral)["outputs"].contains("ao_smooth")) {
+        p.ao = (*bilateral)["outputs"]["ao_smooth"];  // already bound (variant2_oit_ao)
+    } else if (bilateral) {
         p.ao = "quality_ao";
         (*bilateral)["outputs"]["ao_smooth"] = p.ao;
         g["resources"][p.ao] = {{"format", "r16f"}};
