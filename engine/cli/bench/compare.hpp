@@ -17,7 +17,7 @@ struct CompareResult {
 };
 
 // `baseline` and `current`: bench reports (an object with "runs", or the older plain array).
-// threshold: relative, 0.25 = 25 % slower.
+// threshold: relative, 0.5 = 50 % slower.
 CompareResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current, double threshold);
 
 }  // namespace pathlet::cli::bench

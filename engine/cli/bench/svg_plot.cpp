@@ -79,7 +79,8 @@ std::string stacked_bars_svg(const std::string& title, const std::vector<Bar>& b
     const double bw = 56, gap = 28, x0 = 70, y0 = 330, plot_h = 280;
     const double plot_w = std::max(200.0, bars.size() * (bw + gap) + gap);
     const int legend_w = 200;
-    const int w = int(x0 + plot_w + legend_w), h = int(y0 + 90 + std::max<size_t>(0, names.size() * 0));
+    // Room below for the slanted labels, at the right for the legend.
+    const int w = int(x0 + plot_w + legend_w + 60), h = int(y0 + 120);
     std::string s = header(w, std::max(h, int(60 + names.size() * 18)), title);
     s += y_axis(x0, y0, plot_h, plot_w, ymax, step, "median ms per frame");
     for (size_t i = 0; i < bars.size(); ++i) {
