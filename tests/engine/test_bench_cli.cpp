@@ -306,3 +306,21 @@ TEST(BenchCli, QualifiedSetReachesOneExperimentGraph) {
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("none of the graphs"), std::string::npos) << r.err;
 }
+
+TEST(BenchCli, CtrlCLeavesCompleteFilesForFinishedRuns) {
+    fs::path d = scratch("sigint");
+    fs::path f = write(d / "e.json", R"({ "graphs": ["variant1_lineao"], "data": [{"phantom": "small"}],
+      "sizes": ["320x180"], "time": 0.5, "frames": 40, "warmup": 1,
+      "sweep": {"param": "samples", "values": [8, 16, 24, 32, 40, 48, 56, 64]} })");
+    // SIGINT after 1.5 s: the run in progress finishes, the files hold the finished runs.
+    CliRun r = pathlet_cli("bench --experiment " + f.string() + " --out " + (d / "o").string() + " --no-images --quiet",
+                           "timeout --preserve-status -s INT 1.5");
+    ASSERT_EQ(r.code, 130) << r.err;
+    EXPECT_NE(r.err.find("interrupted after"), std::string::npos) << r.err;
+    json j = json::parse(slurp(d / "o" / "results.json"));
+    EXPECT_FALSE(j["complete"].get<bool>());
+    EXPECT_LT(j["runs"].size(), 8u);
+    EXPECT_EQ(count(slurp(d / "o" / "summary.csv"), ",(frame),"), j["runs"].size());
+    for (const auto& e : fs::directory_iterator(d / "o"))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "no temp left: " << e.path();
+}
