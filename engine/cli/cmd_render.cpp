@@ -5,6 +5,7 @@
 #include "renderer.hpp"
 #include "scene_args.hpp"
 #include "util/atomic_file.hpp"
+#include "bench/shard.hpp"
 #include "video_writer.hpp"
 
 #include <cstdio>
@@ -41,6 +42,7 @@ int run(const std::vector<std::string>& argv) {
         .option("report", "PREFIX", "", "also write PREFIX.csv, PREFIX.json and PREFIX.trace.json (Perfetto)")
         .option("video", "FILE.mp4", "", "also encode the frames to a video (needs ffmpeg on PATH)")
         .option("fps", "N", "25", "video frame rate")
+        .option("shard", "I/N", "", "render only frames k with k % N == I (0-based; Slurm array part), same file names")
         .flag("no-images", "do not write image files (timing runs)")
         .flag("quiet", "no progress bar or notes")
         .multi("plugin-dir", "DIR", "also load plugins from DIR");
@@ -59,6 +61,11 @@ int run(const std::vector<std::string>& argv) {
         opt.size = parse_size(a.get("size"));
         if (a.has("time")) opt.time = parse_time_range(a.get("time"));
         opt.timing = parse_timing_backend(a.get("timing"));
+        if (a.has("shard")) {
+            Shard sh = parse_shard(a.get("shard"));
+            opt.shard_index = sh.index;
+            opt.shard_count = sh.count;
+        }
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
@@ -69,6 +76,8 @@ int run(const std::vector<std::string>& argv) {
     opt.warmup = int(a.integer("warmup"));
     if (opt.warmup < 0) throw UsageError("--warmup must be >= 0");
     opt.video_path = a.get("video");
+    if (opt.shard_count > 1 && !opt.video_path.empty())
+        throw UsageError("--video with --shard: each shard has only some frames; encode the joined frames (scripts/slurm/)");
     opt.video_fps = a.number("fps");
     opt.write_images = !a.has("no-images");
     opt.quiet = a.has("quiet");

@@ -121,11 +121,22 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
     }
     // Warm-up frames (JIT compiles shader variants on first use) are rendered, not written.
     uint64_t index = 0;
-    for (int w = 0; w < opt.warmup; ++w) exec.run_frame({index++, times.front(), camera_at(times.front())});
+    const int shards = std::max(1, opt.shard_count);
+    auto mine = [&](size_t i) { return int(i % size_t(shards)) == opt.shard_index; };
+    size_t first = 0, count = 0;
+    while (first < times.size() && !mine(first)) ++first;
+    for (size_t i = 0; i < times.size(); ++i) count += mine(i);
+    if (count == 0) {  // more shards than frames: nothing to do
+        res.profiler.release_gl();
+        return res;
+    }
+    for (int w = 0; w < opt.warmup; ++w) exec.run_frame({index++, times[first], camera_at(times[first])});
 
-    Progress progress("frames", times.size(), opt.quiet);
+    Progress progress("frames", count, opt.quiet);
+    size_t done = 0;
     std::set<std::string> cleaned;  // output folders cleared of stale temps
     for (size_t i = 0; i < times.size(); ++i) {
+        if (!mine(i)) continue;
         double t = times[i];
         exec.run_frame({index++, t, camera_at(t)});
         for (const auto& out : cg.outputs) {
@@ -156,15 +167,15 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
             if (video && &out == &cg.outputs.front()) video->add_frame(img);
         }
         if (on_frame) on_frame(exec, i);
-        progress.update(i + 1);
+        progress.update(++done);
     }
     if (video) {
         video->close();
         res.files.push_back(opt.video_path);
     }
-    res.frames = times.size();
+    res.frames = count;
     res.profiler.release_gl();  // collects frames still in flight, then frees the queries
-    progress.finish(std::to_string(times.size()) + " frames");
+    progress.finish(std::to_string(count) + " frames");
     return res;
 }
 

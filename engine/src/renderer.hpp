@@ -39,6 +39,9 @@ struct RenderOptions {
     std::string video_path;          // "" = no video; needs ffmpeg on PATH
     double video_fps = 25.0;
     bool quiet = false;
+    // Frame i is rendered when i % shard_count == shard_index (render --shard I/N); names stay
+    // those of the whole sequence, so the shards' files together are the unsharded output.
+    int shard_index = 0, shard_count = 1;
 };
 
 struct RenderResult {

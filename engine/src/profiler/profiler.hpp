@@ -93,6 +93,9 @@ public:
         Interval cpu, gpu;
         std::vector<PassSample> passes;
     };
+    // Raw per-frame records (warm-up included, marked) for reports listing every frame.
+    const std::vector<FrameRecord>& frames() const { return frames_; }
+    const std::vector<std::string>& pass_names() const { return pass_names_; }
 
 private:
     // Query objects of one frame in flight: [frame begin, pass0 begin, pass0 end, ..., frame end].

@@ -1,0 +1,166 @@
+#include "report.hpp"
+
+#include "svg_plot.hpp"
+#include "util/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+namespace pathlet::cli::bench {
+namespace {
+
+using nlohmann::json;
+
+std::string fmt(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4f", v);
+    return b;
+}
+
+std::string csv_field(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string o = "\"";
+    for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return o + "\"";
+}
+
+std::string meta_cols(const json& m) {
+    return csv_field(m.value("label", "")) + "," + csv_field(m.value("graph", "")) + "," + m.value("size", "") + "," +
+           csv_field(m.value("sweep_value", ""));
+}
+
+}  // namespace
+
+json run_entry(const Profiler& p, const json& meta) {
+    json e = p.to_json(meta);
+    json frames = json::array();
+    const auto& names = p.pass_names();
+    for (const auto& f : p.frames()) {
+        json passes = json::object();
+        for (const auto& s : f.passes)
+            if (s.gpu.valid) passes[names[size_t(s.pass)]] = s.gpu.duration();
+        frames.push_back({{"frame", f.index},
+                          {"warmup", f.warmup},
+                          {"gpu_ms", f.gpu.valid ? json(f.gpu.duration()) : json()},
+                          {"cpu_ms", f.cpu.valid ? json(f.cpu.duration()) : json()},
+                          {"passes", passes}});
+    }
+    e["frames"] = frames;
+    return e;
+}
+
+std::string summary_csv(const json& report) {
+    std::string out = "label,graph,size,sweep_value,pass,depth,n,median_ms,p5_ms,p95_ms,share_pct\n";
+    for (const json& r : report.at("runs")) {
+        const std::string m = meta_cols(r.at("meta"));
+        for (const json& p : r.at("passes")) {
+            const json& g = p.at("gpu_ms");
+            out += m + "," + csv_field(p.value("name", "")) + "," + std::to_string(p.value("depth", 0)) + "," +
+                   std::to_string(g.value("n", 0)) + "," + fmt(g.value("median", 0.0)) + "," + fmt(g.value("p5", 0.0)) +
+                   "," + fmt(g.value("p95", 0.0)) + "," + fmt(p.value("share_pct", 0.0)) + "\n";
+        }
+        const json& f = r.at("frame").at("gpu_ms");
+        out += m + ",(frame),0," + std::to_string(f.value("n", 0)) + "," + fmt(f.value("median", 0.0)) + "," +
+               fmt(f.value("p5", 0.0)) + "," + fmt(f.value("p95", 0.0)) + ",100.0000\n";
+    }
+    return out;
+}
+
+std::string frames_csv(const json& report) {
+    std::string out = "label,graph,size,sweep_value,frame,warmup,pass,gpu_ms\n";
+    for (const json& r : report.at("runs")) {
+        const std::string m = meta_cols(r.at("meta"));
+        for (const json& f : r.value("frames", json::array())) {
+            const std::string pre = m + "," + std::to_string(f.value("frame", 0)) + "," +
+                                    (f.value("warmup", false) ? "1" : "0") + ",";
+            if (f.contains("gpu_ms") && f["gpu_ms"].is_number()) out += pre + "(frame)," + fmt(f["gpu_ms"].get<double>()) + "\n";
+            for (auto it = f["passes"].begin(); it != f["passes"].end(); ++it)
+                out += pre + csv_field(it.key()) + "," + fmt(it.value().get<double>()) + "\n";
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> write_report_dir(const std::string& dir, const json& report) {
+    std::vector<std::string> files = {"results.json", "summary.csv", "frames.csv", "passes.svg"};
+    write_file_atomic(dir + "/results.json", report.dump(1));
+    write_file_atomic(dir + "/summary.csv", summary_csv(report));
+    write_file_atomic(dir + "/frames.csv", frames_csv(report));
+
+    // Bars: top-level passes only (nested ones are inside their parent's time).
+    std::vector<Bar> bars;
+    for (const json& r : report.at("runs")) {
+        Bar b{r["meta"].value("label", "") + " " + r["meta"].value("size", ""), {}};
+        for (const json& p : r.at("passes"))
+            if (p.value("depth", 0) == 0) b.parts.push_back({p.value("name", ""), p["gpu_ms"].value("median", 0.0)});
+        bars.push_back(b);
+    }
+    const std::string title = report.value("experiment", std::string("bench")) + ": median time per pass (" +
+                              report.value("gl_renderer", std::string("?")) + ")";
+    write_file_atomic(dir + "/passes.svg", stacked_bars_svg(title, bars));
+
+    const std::string param = report.value("sweep_param", std::string());
+    if (!param.empty()) {
+        std::map<std::string, Series> by;  // graph label @ size
+        std::vector<std::string> order;
+        size_t k = 0;
+        for (const json& r : report.at("runs")) {
+            const json& m = r.at("meta");
+            std::string key = m.value("graph_label", "") + " " + m.value("size", "");
+            if (!by.count(key)) order.push_back(key);
+            Series& s = by[key];
+            s.label = key;
+            const std::string v = m.value("sweep_value", "");
+            char* end = nullptr;
+            double x = std::strtod(v.c_str(), &end);
+            s.x.push_back(end && *end == 0 && !v.empty() ? x : double(k));
+            const json& f = r.at("frame").at("gpu_ms");
+            s.median.push_back(f.value("median", 0.0));
+            s.p5.push_back(f.value("p5", 0.0));
+            s.p95.push_back(f.value("p95", 0.0));
+            ++k;
+        }
+        std::vector<Series> series;
+        for (const auto& key : order) series.push_back(by[key]);
+        write_file_atomic(dir + "/sweep.svg",
+                          line_chart_svg(report.value("experiment", std::string("bench")) + ": frame time against " + param,
+                                         param, series));
+        files.push_back("sweep.svg");
+    }
+    return files;
+}
+
+json machine_info() {
+    char host[256] = {0};
+    gethostname(host, sizeof host - 1);
+    std::string cpu;
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) {
+            cpu = line.substr(line.find(':') + 2);
+            break;
+        }
+    return {{"host", host}, {"cpu", cpu}, {"cores", std::thread::hardware_concurrency()}};
+}
+
+std::string file_hash(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "";
+    uint64_t h = 1469598103934665603ull;
+    char c;
+    while (in.get(c)) {
+        h ^= uint8_t(c);
+        h *= 1099511628211ull;
+    }
+    char b[17];
+    std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
+    return b;
+}
+
+}  // namespace pathlet::cli::bench
