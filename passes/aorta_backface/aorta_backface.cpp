@@ -15,7 +15,7 @@ class AortaBackface : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         prog_ = &ctx.program({"aorta_backface.vert", "aorta_backface.frag"});
-        normal_sign_ = outward_sign(ctx.scene().cpu());
+        normal_sign_ = outward_sign(ctx.scene().cpu(), ccw_outward_);
     }
 
     void execute(pathlet::PassContext& ctx) override {
@@ -28,7 +28,15 @@ public:
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_FALSE);  // the G-buffer depth stays as it is
-        glDisable(GL_CULL_FACE);
+        // Back faces only: let the rasteriser cull the near side (half the wall's pixels and
+        // setup) when the winding is consistent; the shader's normal test stays as a fallback.
+        if (p.s("mode") == "backfaces") {
+            glEnable(GL_CULL_FACE);
+            glFrontFace(GL_CCW);
+            glCullFace(ccw_outward_ ? GL_FRONT : GL_BACK);
+        } else {
+            glDisable(GL_CULL_FACE);
+        }
         glEnable(GL_BLEND);
         // Colour: opacity over what is there; alpha: 1 where the wall is (the background's alpha
         // is 0, and an image viewer would show a transparent wall).
@@ -44,6 +52,7 @@ public:
         glDrawElements(GL_TRIANGLES, scene.mesh_index_count(), GL_UNSIGNED_INT, nullptr);
         glBindVertexArray(0);
         glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
         glDepthMask(GL_TRUE);
         glDisable(GL_DEPTH_TEST);
         ctx.stat("wall triangles", double(scene.mesh_index_count() / 3));
@@ -53,7 +62,8 @@ private:
     // +1 when the mesh's normals point out of the vessel, -1 when in (marching cubes and
     // exporters differ): the winding's signed volume says which way is out, and the normals
     // either agree with the winding or not.
-    static float outward_sign(const pathlet::Scene& s) {
+    static float outward_sign(const pathlet::Scene& s, bool& ccw_outward) {
+        ccw_outward = true;
         if (!s.mesh || s.mesh->empty() || s.mesh->normal.size() != s.mesh->position.size()) return 1.0f;
         const auto& m = *s.mesh;
         double volume = 0.0, agree = 0.0;
@@ -63,11 +73,13 @@ private:
             volume += glm::dot(a, glm::cross(b, c));
             agree += glm::dot(face, glm::dvec3(m.normal[m.index[t]] + m.normal[m.index[t + 1]] + m.normal[m.index[t + 2]]));
         }
+        ccw_outward = volume > 0.0;  // counter-clockwise seen from outside: a positive volume
         return (volume > 0.0) == (agree > 0.0) ? 1.0f : -1.0f;
     }
 
     pathlet::ShaderProgram* prog_ = nullptr;
     float normal_sign_ = 1.0f;
+    bool ccw_outward_ = true;
 };
 
 }  // namespace
