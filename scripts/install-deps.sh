@@ -9,6 +9,7 @@ PKGS=(
   zlib1g-dev libhdf5-dev                            # .vtp/.vti zlib blocks; 4D flow HDF5 volumes
   libgtest-dev libbenchmark-dev                     # tests and benchmarks
   libembree-dev                                     # ray-traced AO reference of `pathlet quality` (Embree 3)
+  xvfb                                              # window tests of `pathlet view` (private X server)
   clang-14 libclang-rt-14-dev llvm-14               # sanitizer build and libFuzzer targets (scripts/sanitize.sh, fuzz.sh)
 )
 OPTIONAL=(ffmpeg)                                   # MP4 export, only if it installs

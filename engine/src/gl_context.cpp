@@ -143,12 +143,34 @@ std::unique_ptr<GlContext> GlContext::create_headless(const Options& opts) {
         throw GlError("cannot create a headless OpenGL 4.5 context. Tried:\n" + tried +
                       "Install Mesa (apt-get install libegl-mesa0 libgl1-mesa-dri) or a GPU driver with EGL.");
 
+    install_debug_output(self.get());
+    return self;
+}
+
+void GlContext::install_debug_output(GlContext* self) {
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    glDebugMessageCallback(&GlContext::debug_callback, self.get());
+    glDebugMessageCallback(&GlContext::debug_callback, self);
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
     // Notifications are chatty (buffer placement hints); keep errors, warnings, performance.
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr, GL_FALSE);
+}
+
+std::unique_ptr<GlContext> GlContext::adopt_current(const std::string& platform) {
+    // glvnd dispatches libOpenGL calls to whichever context (GLX or EGL) is current.
+    const GLubyte* version = glGetString(GL_VERSION);
+    if (!version)
+        throw GlError("no OpenGL context is current (" + platform + ")");
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 45)
+        throw GlError("the " + platform + " context is OpenGL " + reinterpret_cast<const char*>(version) +
+                      "; Pathlet needs 4.5 core");
+    auto self = std::unique_ptr<GlContext>(new GlContext());
+    self->platform_ = platform;
+    self->adopted_ = true;
+    install_debug_output(self.get());
     return self;
 }
 
@@ -173,6 +195,8 @@ GlContext::~GlContext() {
         eglDestroyContext(display_, context_);
         // No eglTerminate: Mesa leaks a driver allocation there that confuses LeakSanitizer,
         // and the display is reused by later contexts in the same process anyway.
+    } else if (adopted_) {
+        glDebugMessageCallback(nullptr, nullptr);  // the owner destroys the context itself
     }
 }
 

@@ -26,6 +26,10 @@ public:
     // Throws GlError saying what was tried when no context can be made.
     static std::unique_ptr<GlContext> create_headless(const Options& opts);
     static std::unique_ptr<GlContext> create_headless() { return create_headless(Options{}); }
+    // Wraps the 4.5 core context the caller made current (a GLFW window of `pathlet view`):
+    // same error capture as headless, but the caller owns and destroys the context.
+    // Throws GlError when no context is current or it is older than 4.5.
+    static std::unique_ptr<GlContext> adopt_current(const std::string& platform);
     ~GlContext();
 
     std::string renderer() const;  // GL_RENDERER
@@ -46,7 +50,9 @@ private:
     GlContext() = default;
     static void debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                const GLchar* message, const void* user);
+    static void install_debug_output(GlContext* self);
     void* display_ = nullptr;
+    bool adopted_ = false;
     void* context_ = nullptr;
     std::string platform_;
     std::string scope_;

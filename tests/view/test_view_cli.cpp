@@ -1,0 +1,72 @@
+// `pathlet view` in a real window under a private Xvfb: its screenshot is the headless render
+// of the same frame, a --set changes it as for render, no display is a clear error.
+#include "../support/xvfb.hpp"
+#include "image_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace pathlet;
+
+namespace {
+std::string src(const std::string& p) { return std::string(PATHLET_SOURCE_DIR) + "/" + p; }
+fs::path work() {
+    fs::path d = fs::path(PATHLET_TEST_BINARY_DIR) / ("view_runs_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+int cli(const std::string& args, std::string* err = nullptr) {
+    fs::path e = work() / "err.txt";
+    int status = std::system((std::string(PATHLET_CLI) + " " + args + " >/dev/null 2>" + e.string() + " </dev/null").c_str());
+    if (err) {
+        std::ifstream in(e);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        *err = ss.str();
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+double max_diff(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) return 1e9;
+    double m = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, double(std::fabs(a.pixels[i] - b.pixels[i])));
+    return m;
+}
+const std::string kScene = src("graphs/demo_blur.json") + " --data " + src("tests/engine/data/two_lines.vtk") +
+                           " --size 320x180 --time 0";
+}  // namespace
+
+TEST(ViewCli, ScreenshotEqualsHeadlessRenderAndSetChangesIt) {
+    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    test::Xvfb x;
+    ASSERT_TRUE(x.ok()) << "Xvfb did not start";
+    fs::path d = work();
+    std::string err;
+    ASSERT_EQ(cli("view " + kScene + " --exit-after 2 --screenshot " + (d / "view.png").string(), &err), 0) << err;
+    ASSERT_EQ(cli("render " + kScene + " --quiet --out " + (d / "r").string(), &err), 0) << err;
+    Image view = read_image((d / "view.png").string());
+    Image ref = read_image((d / "r/demo_blur/00000.png").string());
+    EXPECT_LE(max_diff(view, ref), 1.0 / 255.0) << "window screenshot differs from the headless render";
+
+    ASSERT_EQ(cli("view " + kScene + " --set radius=0 --exit-after 1 --screenshot " + (d / "sharp.png").string(), &err), 0) << err;
+    ASSERT_EQ(cli("render " + kScene + " --set radius=0 --quiet --out " + (d / "r0").string(), &err), 0) << err;
+    Image sharp = read_image((d / "sharp.png").string());
+    EXPECT_GT(max_diff(sharp, view), 0.05) << "--set radius=0 did not change the image";
+    EXPECT_LE(max_diff(sharp, read_image((d / "r0/demo_blur/00000.png").string())), 1.0 / 255.0);
+    fs::remove_all(d);
+}
+
+TEST(ViewCli, NoDisplayIsAClearError) {
+    std::string err;
+    int code = cli("view " + kScene + " --exit-after 1", &err);  // ctest clears DISPLAY
+    EXPECT_NE(code, 0);
+    EXPECT_LT(code, 128) << "crashed instead of reporting: " << err;
+    EXPECT_NE(err.find("no display"), std::string::npos) << err;
+    fs::remove_all(work());
+}
