@@ -3,6 +3,8 @@
 # replaying the checked-in regression inputs. A crash, sanitizer report, uncaught exception or a
 # single allocation over 512 MB fails the run; the input is saved in build-san/fuzz-findings/.
 #   scripts/fuzz.sh [SECONDS] [TARGET...]      (builds with scripts/sanitize.sh's settings)
+# FUZZ_SEED=N fixes libFuzzer's random seed (CI does, so a red run is reproducible and a finding
+# does not appear by chance on an unrelated change); unset, every run explores anew.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
@@ -32,11 +34,15 @@ for t in "${TARGETS[@]}"; do
   fi
   dict=(); [ -f "tests/fuzz/$t.dict" ] && dict=(-dict="tests/fuzz/$t.dict")
   log="$FINDINGS/$t.log"
+  seed=(); [ -n "${FUZZ_SEED:-}" ] && seed=(-seed="$FUZZ_SEED")
   if "$bin" "$CORPUS/$t" "${dict[@]}" -max_total_time="$SECONDS_PER_TARGET" -malloc_limit_mb=512 -rss_limit_mb=2048 \
-       -timeout=10 -artifact_prefix="$FINDINGS/$t-" -print_final_stats=1 >"$log" 2>&1; then
+       -timeout=10 -artifact_prefix="$FINDINGS/$t-" -print_final_stats=1 "${seed[@]}" >"$log" 2>&1; then
     result=ok
   else
-    result="FAILED: $(grep -m1 -E 'ERROR|runtime error|Test unit written' "$log" || echo 'see log') ($log)"
+    result="FAILED: $(grep -m1 -E 'ERROR|runtime error|Test unit written|terminate called' "$log" || echo 'see log') ($log)"
+    # CI keeps only this output: show what crashed and the input that did it.
+    grep -m1 -B2 -A12 -E 'terminate called|ERROR: AddressSanitizer|runtime error|ERROR: libFuzzer' "$log" | sed 's/^/    /' || true
+    for a in "$FINDINGS/$t-"*; do [ -f "$a" ] && { echo "    input $a (base64):"; base64 -w 100 "$a" | head -20 | sed 's/^/    /'; }; done
     failed=1
   fi
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)

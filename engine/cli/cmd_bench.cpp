@@ -72,7 +72,7 @@ json read_json(const std::string& path, const std::string& what) {
     if (!in) throw std::runtime_error(path + ": cannot open " + what);
     try {
         return json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
         throw std::runtime_error(path + ": " + what + " is not valid JSON: " + e.what());
     }
 }

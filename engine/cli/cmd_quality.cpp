@@ -39,7 +39,7 @@ json read_json(const std::string& path) {
     s << in.rdbuf();
     try {
         return json::parse(s.str(), nullptr, true, /*ignore_comments=*/true);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
         throw std::runtime_error(path + ": not valid JSON: " + e.what());
     }
 }

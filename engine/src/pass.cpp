@@ -60,6 +60,8 @@ std::string ParamDecl::coerce(const json& in, json& out) const {
                 return "expects an integer, got " + in.dump();
             double v = in.get<double>();
             if (v < min || v > max) return "value " + in.dump() + " is out of range " + range_text(*this);
+            // Beyond +-2^63 the cast below is undefined; int parameters never need that much.
+            if (std::fabs(v) >= 9.2e18) return "value " + in.dump() + " does not fit a 64-bit integer";
             out = static_cast<int64_t>(v);
             return "";
         }

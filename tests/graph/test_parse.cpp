@@ -94,6 +94,31 @@ TEST(Parse, SyntaxErrorAfterACommentCountsItsLines) {
     }
 }
 
+// Found by fuzz_graph: nlohmann throws out_of_range (not parse_error) for 1e400.
+TEST(Parse, NumberBeyondDoubleIsAGraphErrorWithItsPlace) {
+    try {
+        parse("{\n  \"name\": \"x\",\n  \"version\": 1e400\n}");
+        FAIL() << "no error";
+    } catch (const GraphError& e) {
+        ASSERT_EQ(e.diagnostics.size(), 1u);
+        const Diagnostic& d = e.diagnostics[0];
+        EXPECT_EQ(d.line, 3);
+        EXPECT_EQ(d.column, 14);
+        EXPECT_NE(d.message.find("'1e400'"), std::string::npos) << d.str();
+        EXPECT_EQ(std::string(e.what()).find("[json.exception"), std::string::npos) << e.what();
+    }
+}
+
+// Casting 1e300 to int64 or float is undefined behaviour; both are refused with a message.
+TEST(Parse, HugeIntDefaultAndScaleAreRefused) {
+    auto d = problems(R"json({
+      "variables": {"n": {"type": "int", "default": 1e300}},
+      "resources": {"r": {"size": {"relative_to": "output", "scale": 1e300}}}
+    })json");
+    EXPECT_TRUE(has_problem(d, "/variables/n/default", "64-bit integer"));
+    EXPECT_TRUE(has_problem(d, "/resources/r/size/scale", "at most 1e6"));
+}
+
 TEST(Parse, UnknownKeysSuggestTheClosest) {
     auto d = problems(R"json({
       "pases": [],

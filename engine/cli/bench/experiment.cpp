@@ -177,7 +177,7 @@ Experiment load_experiment(const std::string& path) {
     json j;
     try {
         j = json::parse(in);
-    } catch (const json::parse_error& err) {
+    } catch (const json::exception& err) {
         throw std::runtime_error(path + ": not valid JSON: " + err.what());
     }
     return parse_experiment(j, path);

@@ -255,14 +255,15 @@ private:
         if (d.relative_to.empty()) error(ptr + "/relative_to", "relative_to must name \"output\" or a resource");
         if (s.contains("scale")) {
             const json& sc = s["scale"];
-            auto positive = [](const json& x) { return x.is_number() && x.get<double>() > 0 && std::isfinite(x.get<double>()); };
+            // Capped well below float's range: the scale is stored as float.
+            auto positive = [](const json& x) { return x.is_number() && x.get<double>() > 0 && x.get<double>() <= 1e6; };
             if (positive(sc)) {
                 d.scale_x = d.scale_y = sc.get<float>();
             } else if (sc.is_array() && sc.size() == 2 && positive(sc[0]) && positive(sc[1])) {
                 d.scale_x = sc[0].get<float>();
                 d.scale_y = sc[1].get<float>();
             } else {
-                error(ptr + "/scale", "scale must be a positive number or [sx, sy] of positive numbers, got " + sc.dump());
+                error(ptr + "/scale", "scale must be a positive number (at most 1e6) or [sx, sy] of such numbers, got " + sc.dump());
                 return std::nullopt;
             }
         }
@@ -411,6 +412,18 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path) {
         Diagnostic d{path, "", msg};
         d.line = line;
         d.column = int(end - line_start) + 1;
+        throw GraphError({d});
+    } catch (const json::out_of_range& e) {
+        // A number literal beyond double's range (1e400). nlohmann gives no position: find the token.
+        std::string what = e.what();
+        size_t q = what.find('\'');
+        std::string token = q == std::string::npos ? "" : what.substr(q + 1, what.rfind('\'') - q - 1);
+        Diagnostic d{path, "", "number out of range: " + (token.empty() ? what : "'" + token + "'") +
+                                   " does not fit a double (|x| < 1.8e308)"};
+        if (size_t at = token.empty() ? std::string::npos : text.find(token); at != std::string::npos) {
+            d.line = 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+            d.column = int(at - (text.rfind('\n', at) == std::string::npos ? 0 : text.rfind('\n', at) + 1)) + 1;
+        }
         throw GraphError({d});
     }
     Parser p(path);
