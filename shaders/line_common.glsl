@@ -26,7 +26,10 @@ vec3 line_safe_normalize(vec3 v, vec3 fallback) {
 
 // Members of the stage interfaces (a block name must match across stages; members too).
 // position and tangent are in view space; arc is the arc length from the line's first point.
-#define LINE_VERTEX_MEMBERS vec3 position; float time; float speed; float arc; vec3 tangent; flat int line_id;
+// point: the data point's index (gl_VertexID), so the GS knows how many data segments a
+// segment after the level of detail stands for.
+#define LINE_VERTEX_MEMBERS vec3 position; float time; float speed; float arc; vec3 tangent; flat int line_id; \
+    flat int point;
 // pos_view: point on the flat quad; side: unit vector across it (s = +1 side); s: -1..1
 // across the width; half_width: the hooked half width here; age, arc_head, arc_tail: LinePoint.
 #define LINE_FRAGMENT_MEMBERS vec3 pos_view; vec3 side; vec3 tangent; float s; float speed; float time; \
@@ -50,6 +53,7 @@ void line_vertex() {
     v_out.arc = a_arc;
     v_out.tangent = mat3(u_view) * a_tangent;
     v_out.line_id = a_line_id;
+    v_out.point = gl_VertexID;
 }
 #endif
 

@@ -9,7 +9,16 @@
 #include "line_common.glsl"
 
 layout(lines) in;
+#ifdef LINE_WIDTH_HOOKED
+// A width hook is evaluated at the quad ends and interpolated between them. The level of detail
+// (pathlet/line_lod.hpp) may join many data segments into one, which would coarsen a taper, so a
+// hooked width splits the segment back into as many pieces as data segments it stands for (up
+// to 16): a width hook sees the data's resolution.
+const int kMaxPieces = 16;
+layout(triangle_strip, max_vertices = 34) out;
+#else
 layout(triangle_strip, max_vertices = 4) out;
+#endif
 
 float line_width_hook(LinePoint p);  // the pass's hook, linked in beside this file
 
@@ -56,11 +65,15 @@ void main() {
         }
     }
     int id = v_in[0].line_id;
-    vec3 ta = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, fa), v_in[0].tangent);
-    vec3 tb = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, fb), v_in[1].tangent);
-    emit_end(mix(p0, p1, fa), ta, line_point(mix(t0, t1, fa), mix(v_in[0].arc, v_in[1].arc, fa),
-                                             mix(v_in[0].speed, v_in[1].speed, fa), id));
-    emit_end(mix(p0, p1, fb), tb, line_point(mix(t0, t1, fb), mix(v_in[0].arc, v_in[1].arc, fb),
-                                             mix(v_in[0].speed, v_in[1].speed, fb), id));
+    int pieces = 1;
+#ifdef LINE_WIDTH_HOOKED
+    pieces = clamp(int(ceil((fb - fa) * float(v_in[1].point - v_in[0].point))), 1, kMaxPieces);
+#endif
+    for (int k = 0; k <= pieces; ++k) {
+        float f = mix(fa, fb, float(k) / float(pieces));
+        vec3 t = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, f), v_in[k == 0 ? 0 : 1].tangent);
+        emit_end(mix(p0, p1, f), t, line_point(mix(t0, t1, f), mix(v_in[0].arc, v_in[1].arc, f),
+                                               mix(v_in[0].speed, v_in[1].speed, f), id));
+    }
     EndPrimitive();
 }

@@ -84,6 +84,7 @@ void GpuScene::upload(const Scene& scene) {
                     safe_normalize(pl.position[b] - pl.position[a], glm::vec3(1, 0, 0)), int32_t(li), arc_[i]};
         }
     }
+    lod_.build(pl, smax_ - smin_);
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
                          v.empty() ? nullptr : v.data(), 0);
@@ -131,11 +132,13 @@ void GpuScene::upload(const Scene& scene) {
 void GpuScene::ranges(double t0, double t1, Ranges& out) const {
     out.first.clear();
     out.count.clear();
+    out.line.clear();
     out.segments = 0;
     if (!cpu_) return;
     const Pathlines& pl = cpu_->lines;
     bool whole = !(t1 > t0);
-    for (const LineRange& r : pl.lines) {
+    for (size_t li = 0; li < pl.lines.size(); ++li) {
+        const LineRange r = pl.lines[li];
         if (r.count < 2) continue;
         uint32_t a = 0, b = r.count;  // point indices [a, b) within the line
         if (!whole) {
@@ -149,6 +152,7 @@ void GpuScene::ranges(double t0, double t1, Ranges& out) const {
         }
         out.first.push_back(GLint(r.first + a));
         out.count.push_back(GLsizei(b - a));
+        out.line.push_back(uint32_t(li));
         out.segments += b - a - 1;
     }
 }

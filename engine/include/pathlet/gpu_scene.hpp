@@ -4,6 +4,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include <pathlet/line_lod.hpp>
 #include <pathlet/scene.hpp>
 
 #include <vector>
@@ -33,6 +34,7 @@ public:
     struct Ranges {
         std::vector<GLint> first;
         std::vector<GLsizei> count;
+        std::vector<uint32_t> line;  // line index of each range
         size_t segments = 0;
     };
     void ranges(double t0, double t1, Ranges& out) const;
@@ -43,6 +45,9 @@ public:
     void pathlets(double t0, double t1, std::vector<glm::vec4>& out) const;
     // Draws the ranges as GL_LINE_STRIPs with line_vao() bound (the caller binds a program).
     void draw_lines(const Ranges& r) const;
+
+    // Level of detail of the lines (pathlet/line_lod.hpp), built at upload.
+    const LineLod& lod() const { return lod_; }
 
     Bounds bounds() const { return bounds_; }
     // The line width passes use when theirs is 0 ("auto"): 0.35 % of the bounding-box
@@ -63,6 +68,7 @@ private:
     void release();
     const Scene* cpu_ = nullptr;
     std::vector<float> arc_;  // per point, arc length from its line's first point
+    LineLod lod_;
     GLuint line_vao_ = 0, line_vbo_ = 0;
     GLuint mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
     GLsizei mesh_index_count_ = 0;

@@ -46,7 +46,7 @@ const std::vector<std::string>& colormaps();
 int colormap_index(const std::string& name);
 
 // The shared line parameters: window, line_width, halo, halo_color, halo_depth, colormap,
-// speed_min, speed_max, background. Declared here once for every line pass.
+// speed_min, speed_max, background, lod. Declared here once for every line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b);
 // LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
@@ -75,9 +75,16 @@ public:
     // while a bound depth target still records where fragments landed.
     void set_depth_func(GLenum f) { depth_func_ = f; }
 
+    // Segments drawn in the last frame (after the level of detail).
+    size_t segments() const { return lod_on_ ? strips_.segments : ranges_.segments; }
+
 private:
     GLenum depth_func_ = GL_LEQUAL;
     GpuScene::Ranges ranges_;
+    LineLod::Strips strips_;
+    bool lod_on_ = false;
+    GLuint index_buffer_ = 0;
+    size_t index_capacity_ = 0;
     std::vector<glm::vec4> pathlets_;
     GLuint buffer_ = 0;
     size_t capacity_ = 0;

@@ -3,8 +3,21 @@
 #include <pathlet/lines.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <glm/matrix.hpp>
 
 namespace pathlet::lines {
+
+namespace {
+// The kit's programs that have a width hook: their draws keep the data's resolution (a hooked
+// width is evaluated per data segment, see line_quad.geom). Programs live in the context's cache.
+std::map<const ShaderProgram*, bool>& width_hooked() {
+    static std::map<const ShaderProgram*, bool> m;
+    return m;
+}
+}  // namespace
 
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
                        const std::vector<std::string>& defines) {
@@ -12,12 +25,30 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
                                    hooks.width.empty() ? "line_width_default.geom" : hooks.width};
     files.insert(files.end(), fragment.begin(), fragment.end());
     files.push_back(hooks.color.empty() ? "line_color_default.frag" : hooks.color);
-    return ctx.program(files, defines);
+    std::vector<std::string> all = defines;
+    if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
+    ShaderProgram& prog = ctx.program(files, all);
+    width_hooked()[&prog] = !hooks.width.empty();
+    return prog;
 }
 
 Drawer::~Drawer() {
     if (buffer_) glDeleteBuffers(1, &buffer_);
+    if (index_buffer_) glDeleteBuffers(1, &index_buffer_);
 }
+
+namespace {
+// Grow-only buffer: no per-frame allocation once the largest frame has been seen.
+void upload(GLuint& buffer, size_t& capacity, const void* data, size_t bytes) {
+    if (bytes > capacity) {
+        if (buffer) glDeleteBuffers(1, &buffer);
+        glCreateBuffers(1, &buffer);
+        capacity = std::max(bytes, capacity + capacity / 2);
+        glNamedBufferStorage(buffer, GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (bytes) glNamedBufferSubData(buffer, 0, GLsizeiptr(bytes), data);
+}
+}  // namespace
 
 void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     const Params& p = ctx.params();
@@ -30,16 +61,25 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     scene.ranges(windowed ? t - window : 0.0, windowed ? t : 0.0, ranges_);
     scene.pathlets(windowed ? t - window : 0.0, windowed ? t : 0.0, pathlets_);
     if (pathlets_.empty()) pathlets_.push_back(glm::vec4(0.0f));  // a buffer of size 0 cannot be bound
-    // Grow-only: no per-frame allocation once the data set's line count is reached.
-    size_t bytes = pathlets_.size() * sizeof(glm::vec4);
-    if (bytes > capacity_) {
-        if (buffer_) glDeleteBuffers(1, &buffer_);
-        glCreateBuffers(1, &buffer_);
-        glNamedBufferStorage(buffer_, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-        capacity_ = bytes;
-    }
-    glNamedBufferSubData(buffer_, 0, GLsizeiptr(bytes), pathlets_.data());
+    upload(buffer_, capacity_, pathlets_.data(), pathlets_.size() * sizeof(glm::vec4));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPathletBinding, buffer_);
+
+    // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
+    // or scale (orthographic), from the viewport the pass has bound.
+    const float lod_px = p.f("lod");
+    lod_on_ = lod_px > 0.0f && !scene.lod().empty();
+    if (lod_on_) {
+        GLint vp[4] = {0, 0, 0, 0};
+        glGetIntegerv(GL_VIEWPORT, vp);
+        const bool perspective = cam.proj[2][3] < -0.5f;
+        const float scale = 2.0f / (float(std::max(vp[3], 1)) * std::max(std::fabs(cam.proj[1][1]), 1e-12f));
+        const glm::vec3 eye = glm::vec3(glm::inverse(cam.view)[3]);
+        auto hooked = width_hooked().find(&prog);
+        const uint32_t max_skip = hooked != width_hooked().end() && hooked->second ? 16 : UINT32_MAX;
+        scene.lod().select(ranges_.first, ranges_.count, ranges_.line, eye, scale, perspective, lod_px, strips_,
+                           max_skip);
+        upload(index_buffer_, index_capacity_, strips_.index.data(), strips_.index.size() * sizeof(GLuint));
+    }
 
     float smin = p.f("speed_min") > 0.0f ? p.f("speed_min") : scene.speed_min();
     float smax = p.f("speed_max") > 0.0f ? p.f("speed_max") : scene.speed_max();
@@ -64,9 +104,21 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);  // quads face either way
-    ctx.scene().draw_lines(ranges_);
+    if (lod_on_) {
+        if (!strips_.count.empty()) {
+            // The scene's VAO is shared by every line pass: bind this drawer's indices each time.
+            glVertexArrayElementBuffer(ctx.scene().line_vao(), index_buffer_);
+            glBindVertexArray(ctx.scene().line_vao());
+            glMultiDrawElements(GL_LINE_STRIP, strips_.count.data(), GL_UNSIGNED_INT, strips_.offset.data(),
+                                GLsizei(strips_.count.size()));
+            glBindVertexArray(0);
+        }
+    } else {
+        ctx.scene().draw_lines(ranges_);
+    }
     glDisable(GL_DEPTH_TEST);
-    ctx.stat("segments", double(ranges_.segments));
+    ctx.stat("segments", double(segments()));
+    ctx.stat("segments_exact", double(ranges_.segments));  // before the level of detail
     ctx.stat("lines", double(ranges_.first.size()));
 }
 
