@@ -45,6 +45,9 @@ vec3 colormap_coolwarm(float u) {
 
 vec3 colormap(int which, float u) {
     u = clamp(u, 0.0, 1.0);
+#ifdef LINE_COLORMAP
+    which = LINE_COLORMAP;  // the line kit compiles one map per program (the branches fold away)
+#endif
     if (which == COLORMAP_VIRIDIS) return colormap_viridis(u);
     if (which == COLORMAP_COOLWARM) return colormap_coolwarm(u);
     // Grey stays off pure black and white so lines read on either background.

@@ -21,7 +21,9 @@ layout(location = 3) out int o_line_id;
 void main() {
     LineFrag f = line_fragment();
     vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
+#ifndef LINE_OPAQUE  // the default colour hook is opaque: no screen door, no discard
     if (c.a < line_screen_door_threshold(gl_FragCoord.xy)) discard;
+#endif
     o_color = vec4(line_halo_tint(c.rgb, f), 1.0);
     o_normal_depth = vec4(f.normal, f.depth01);
     o_zoom = u_zoom_scale / f.eye_depth;

@@ -46,9 +46,9 @@ void main() {
 #endif
         return;
     }
-    // Only [0, n) is ever read: no initialisation (192 stores per pixel on llvmpipe).
     float dep[K_MAX];
     uint col[K_MAX], lid[K_MAX];
+    for (int k = 0; k < K_MAX; ++k) dep[k] = 1.0, col[k] = 0u, lid[k] = 0u;
     int n = 0;
     uint len = 0u;
     const int K = clamp(u_max_fragments, 1, K_MAX);

@@ -27,6 +27,12 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     files.push_back(hooks.color.empty() ? "line_color_default.frag" : hooks.color);
     std::vector<std::string> all = defines;
     if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
+    // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both
+    // sides of every branch, so a uniform switch costs all four maps per fragment. setup()
+    // runs again when a parameter changes, which picks the new variant.
+    if (ctx.params().raw().contains("colormap"))
+        all.push_back("LINE_COLORMAP " + std::to_string(colormap_index(ctx.params().s("colormap"))));
+    if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
     ShaderProgram& prog = ctx.program(files, all);
     width_hooked()[&prog] = !hooks.width.empty();
     return prog;
