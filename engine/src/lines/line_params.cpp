@@ -35,7 +35,7 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b) {
         .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile")
         .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's 99th percentile")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour of pixels without lines")
-        .param_float("lod", 0.25, 0.0, 16.0,
+        .param_float("lod", 0.1, 0.0, 16.0,
                      "level of detail: points a Douglas-Peucker simplification of the line drops within this many "
                      "pixels (at the line's nearest distance) are not drawn; 0 = every point, exact");
 }
