@@ -92,7 +92,11 @@ void LineLod::select(const std::vector<GLint>& first, const std::vector<GLsizei>
     out.segments = 0;
     for (size_t i = 0; i < first.size(); ++i) {
         const float d = perspective ? distance_to_box(eye, line_box_[line[i]]) : 1.0f;
-        const float eps = lod_px * scale * d;
+        // A line without a finite point has no box (d = inf); a bad camera gives NaN. Keep eps
+        // finite and >= 0 so the line's ends (tolerance +inf) always stop the scans below.
+        float eps = lod_px * scale * d;
+        if (!(eps >= 0.0f)) eps = 0.0f;
+        eps = std::min(eps, std::numeric_limits<float>::max());
         // Points at 0 tolerance (exactly on the chord) may go even at eps = 0 (camera inside
         // the box): they add nothing to the picture.
         const uint32_t f = uint32_t(first[i]), l = uint32_t(first[i] + count[i] - 1);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using namespace pathlet;
@@ -158,4 +159,30 @@ TEST(LineLod, MaxSkipBoundsTheDataSegmentsPerDrawnSegment) {
     lod.select({0}, {1000}, {0}, glm::vec3(0), 1.0f, false, 0.5f, st, 16);
     for (size_t k = 0; k + 1 < st.index.size(); ++k) ASSERT_LE(st.index[k + 1] - st.index[k], 16u);
     EXPECT_EQ(st.segments, (999u + 15u) / 16u);
+}
+
+// A line of non-finite points has no bounding box (distance inf) and a broken camera gives NaN:
+// the scans must still stop at the line's own ends and draw it whole.
+TEST(LineLod, NonFiniteDistancesStayInsideTheLine) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    Pathlines pl;
+    for (int li = 0; li < 2; ++li)
+        for (int i = 0; i < 50; ++i) {
+            pl.position.push_back(li == 1 ? glm::vec3(nan) : glm::vec3(float(i), 0, 0));
+            pl.time.push_back(float(i));
+            pl.velocity.push_back({1, 0, 0});
+        }
+    pl.lines = {{0, 50}, {50, 50}};
+    LineLod lod;
+    lod.build(pl, 1.0f);
+    for (glm::vec3 eye : {glm::vec3(0, 0, 10), glm::vec3(nan)}) {
+        LineLod::Strips st;
+        lod.select({0, 50}, {50, 50}, {0, 1}, eye, 1.0f, /*perspective=*/true, 0.5f, st);
+        ASSERT_EQ(st.count.size(), 2u);
+        for (size_t k = 0; k < size_t(st.count[0]); ++k) EXPECT_LT(st.index[k], 50u);
+        for (size_t k = size_t(st.count[0]); k < st.index.size(); ++k) {
+            EXPECT_GE(st.index[k], 50u);
+            EXPECT_LT(st.index[k], 100u);
+        }
+    }
 }
