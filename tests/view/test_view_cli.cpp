@@ -70,3 +70,48 @@ TEST(ViewCli, NoDisplayIsAClearError) {
     EXPECT_NE(err.find("no display"), std::string::npos) << err;
     fs::remove_all(work());
 }
+
+// The mouse camera and the keys, driven by a script: an orbit and a zoom change the picture
+// and the s key writes the graph output; --time starts paused (two runs of different length
+// show the same frame) and space plays (the clock moves, so the picture does).
+TEST(ViewCli, ScriptedOrbitZoomPlayAndScreenshotKey) {
+    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    test::Xvfb x;
+    ASSERT_TRUE(x.ok()) << "Xvfb did not start";
+    fs::path d = work();
+    const std::string scene = "variant1_lineao --phantom small --size 160x90 --time 9";
+    auto shot = [&](const std::string& name, const std::string& script, int frames) {
+        std::string args = "view " + scene + " --exit-after " + std::to_string(frames) + " --screenshot " + (d / name).string();
+        if (!script.empty()) {
+            std::ofstream(d / (name + ".json")) << script;
+            args += " --script " + (d / (name + ".json")).string() + " --screenshot-dir " + d.string();
+        }
+        std::string err;
+        EXPECT_EQ(cli(args, &err), 0) << err;
+        return read_image((d / name).string());
+    };
+    Image plain = shot("plain.png", "", 2);
+    Image paused_longer = shot("paused.png", "", 4);
+    EXPECT_LE(max_diff(plain, paused_longer), 1.0 / 255.0) << "--time should start paused";
+    Image orbit = shot("orbit.png", R"([{"frame": 0, "drag": [80, 0], "button": "left"}, {"frame": 1, "key": "s"}])", 2);
+    EXPECT_GT(max_diff(plain, orbit), 0.2) << "a left drag did not turn the camera";
+    ASSERT_TRUE(fs::exists(d / "pathlet_view_00001.png")) << "the s key wrote no screenshot";
+    EXPECT_LE(max_diff(read_image((d / "pathlet_view_00001.png").string()), orbit), 1.0 / 255.0);
+    Image zoom = shot("zoom.png", R"([{"frame": 0, "scroll": 3}])", 1);
+    EXPECT_GT(max_diff(plain, zoom), 0.2) << "the wheel did not zoom";
+    Image played = shot("played.png", R"([{"frame": 0, "key": "space"}, {"frame": 0, "key": "up"}])", 8);
+    EXPECT_GT(max_diff(plain, played), 0.05) << "space did not start the clock";
+    fs::remove_all(d);
+}
+
+TEST(ViewCli, BadScriptIsAClearErrorNamingFileAndEvent) {
+    fs::path d = work();
+    std::ofstream(d / "bad.json") << R"([{"frame": 0, "key": "space"}, {"frame": 1, "key": "f13"}])";
+    std::string err;
+    int code = cli("view " + kScene + " --exit-after 1 --script " + (d / "bad.json").string(), &err);
+    EXPECT_NE(code, 0);
+    EXPECT_LT(code, 128) << err;
+    EXPECT_NE(err.find("bad.json:/1"), std::string::npos) << err;
+    EXPECT_NE(err.find("\"key\" must be one of"), std::string::npos) << err;
+    fs::remove_all(d);
+}

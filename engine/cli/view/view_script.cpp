@@ -1,0 +1,52 @@
+#include "view/view_script.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace pathlet::view {
+
+std::vector<ScriptEvent> load_script(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open the view script");
+    std::stringstream s;
+    s << in.rdbuf();
+    nlohmann::json j = nlohmann::json::parse(s.str(), nullptr, false, true);
+    if (j.is_discarded()) throw std::runtime_error(path + ": the view script is not valid JSON");
+    if (!j.is_array()) throw std::runtime_error(path + ":/: a view script is an array of events");
+    static const std::vector<std::string> keys{"space", "left", "right", "up", "down", "r", "l", "s", "?"};
+    std::vector<ScriptEvent> out;
+    for (size_t i = 0; i < j.size(); ++i) {
+        const nlohmann::json& e = j[i];
+        const std::string at = path + ":/" + std::to_string(i);
+        auto bad = [&](const std::string& why) { throw std::runtime_error(at + ": " + why + ", got " + e.dump()); };
+        if (!e.is_object() || !e.contains("frame") || !e["frame"].is_number_integer() || e["frame"].get<long>() < 0)
+            bad("an event needs \"frame\": a shown frame number >= 0");
+        ScriptEvent ev;
+        ev.frame = e["frame"].get<long>();
+        if (e.contains("key")) {
+            if (!e["key"].is_string() || std::find(keys.begin(), keys.end(), e["key"].get<std::string>()) == keys.end())
+                bad("\"key\" must be one of space, left, right, up, down, r, l, s, ?");
+            ev.key = e["key"].get<std::string>();
+        } else if (e.contains("drag")) {
+            const auto& d = e["drag"];
+            if (!d.is_array() || d.size() != 2 || !d[0].is_number() || !d[1].is_number()) bad("\"drag\" must be [dx, dy] in pixels");
+            ev.dx = float(std::clamp(d[0].get<double>(), -1e5, 1e5));
+            ev.dy = float(std::clamp(d[1].get<double>(), -1e5, 1e5));
+            ev.button = e.value("button", std::string("left"));
+            if (ev.button != "left" && ev.button != "right" && ev.button != "middle") bad("\"button\" must be left, right or middle");
+        } else if (e.contains("scroll")) {
+            if (!e["scroll"].is_number()) bad("\"scroll\" must be a number of wheel steps");
+            ev.scroll = float(std::clamp(e["scroll"].get<double>(), -1e3, 1e3));
+        } else {
+            bad("an event needs \"key\", \"drag\" or \"scroll\"");
+        }
+        out.push_back(ev);
+    }
+    return out;
+}
+
+}  // namespace pathlet::view

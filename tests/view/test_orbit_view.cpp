@@ -1,0 +1,64 @@
+// The camera and clock of `pathlet view` without a window: orbit keeps the distance and turns
+// the eye, pan moves eye and target together, zoom scales the distance, reset restores the
+// render's framing; playback loops, stops at the end without loop, scrubs within the span.
+#include "view/orbit_view.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace pathlet;
+
+namespace {
+const Bounds kBox{glm::vec3(-10, -20, -5), glm::vec3(10, 20, 5)};
+const glm::ivec2 kSize{320, 180};
+float dist(const Camera& c) { return glm::length(c.eye - c.target); }
+}  // namespace
+
+TEST(OrbitView, OrbitTurnsTheEyeAtTheSameDistanceAndResetRestores) {
+    const Camera framing = frame_bounds(kBox, kSize);
+    view::OrbitView v(framing, kBox, kSize);
+    v.orbit(100, 0);  // 40 degrees about the up axis
+    const Camera& c = v.camera();
+    EXPECT_NEAR(dist(c), dist(framing), 1e-3f * dist(framing));
+    const glm::vec3 a = glm::normalize(framing.eye - framing.target), b = glm::normalize(c.eye - c.target);
+    EXPECT_NEAR(glm::degrees(std::acos(glm::clamp(glm::dot(a, b), -1.0f, 1.0f))), 40.0f, 0.5f);
+    EXPECT_NE(c.view, framing.view);
+    v.reset();
+    EXPECT_EQ(v.camera().eye, framing.eye);
+    EXPECT_EQ(v.camera().view, framing.view);
+}
+
+TEST(OrbitView, TiltStopsShortOfThePoles) {
+    view::OrbitView v(frame_bounds(kBox, kSize), kBox, kSize);
+    for (int i = 0; i < 50; ++i) v.orbit(0, 40);  // 800 degrees of tilt asked for
+    const Camera& c = v.camera();
+    EXPECT_LT(std::fabs(glm::dot(glm::normalize(c.eye - c.target), glm::normalize(c.up))), 0.99f);
+}
+
+TEST(OrbitView, PanMovesEyeAndTargetTogetherAndZoomScalesTheDistance) {
+    const Camera framing = frame_bounds(kBox, kSize);
+    view::OrbitView v(framing, kBox, kSize);
+    v.pan(30, -10);
+    EXPECT_GT(glm::length(v.camera().target - framing.target), 0.0f);
+    EXPECT_NEAR(glm::length((v.camera().eye - framing.eye) - (v.camera().target - framing.target)), 0.0f, 1e-4f);
+    const float d = dist(v.camera());
+    v.zoom(2);
+    EXPECT_NEAR(dist(v.camera()), d / (1.15f * 1.15f), 1e-3f * d);
+    v.zoom(-1000);  // clamped far away, never infinite
+    EXPECT_LE(dist(v.camera()), 100.0f * kBox.radius() * 1.001f);
+}
+
+TEST(Playback, LoopsStopsAndScrubsWithinTheSpan) {
+    view::Playback p;
+    p.t_min = 2, p.t_max = 6, p.t = 5, p.playing = true;
+    p.advance(2.0);  // 7 -> wraps to 3
+    EXPECT_NEAR(p.t, 3.0, 1e-9);
+    p.loop = false;
+    p.speed = 4.0;
+    p.advance(1.0);  // 7 -> stops at the end
+    EXPECT_NEAR(p.t, 6.0, 1e-9);
+    EXPECT_FALSE(p.playing);
+    p.advance(1.0);
+    EXPECT_NEAR(p.t, 6.0, 1e-9);  // paused: no change
+    p.scrub(-10);
+    EXPECT_NEAR(p.t, 2.0, 1e-9);
+}
