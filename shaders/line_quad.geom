@@ -15,6 +15,7 @@ layout(lines) in;
 // hooked width splits the segment back into as many pieces as data segments it stands for (up
 // to 16): a width hook sees the data's resolution.
 const int kMaxPieces = 16;
+uniform int u_lod_max_skip;  // set by lines::Drawer (kWidthHookMaxSkip), at most kMaxPieces
 layout(triangle_strip, max_vertices = 34) out;
 #else
 layout(triangle_strip, max_vertices = 4) out;
@@ -67,7 +68,7 @@ void main() {
     int id = v_in[0].line_id;
     int pieces = 1;
 #ifdef LINE_WIDTH_HOOKED
-    pieces = clamp(int(ceil((fb - fa) * float(v_in[1].point - v_in[0].point))), 1, kMaxPieces);
+    pieces = clamp(int(ceil((fb - fa) * float(v_in[1].point - v_in[0].point))), 1, min(u_lod_max_skip, kMaxPieces));
 #endif
     for (int k = 0; k <= pieces; ++k) {
         float f = mix(fa, fb, float(k) / float(pieces));

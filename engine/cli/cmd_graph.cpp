@@ -36,11 +36,7 @@ int run(const std::vector<std::string>& argv) {
     rt.load_plugins(a.all("plugin-dir"));
     std::string path = resolve_graph_path(a.pos("GRAPH"));
     try {
-        GraphFile g = parse_graph_file(path);
-        rt.load_graph_plugins(g);
-        std::vector<Diagnostic> diags;
-        apply_overrides(g, a.all("set"), rt.registry, diags);
-        if (!diags.empty()) throw GraphError(diags);
+        GraphFile g = rt.load_graph(path, a.all("set"));
         CompiledGraph cg = compile_graph(g, rt.registry, size);
         if (a.has("dot")) {
             std::string dot = graph_to_dot(cg, g);

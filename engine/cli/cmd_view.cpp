@@ -106,10 +106,11 @@ int run(const std::vector<std::string>& argv) {
     add_scene_options(a);
     if (!a.parse(argv)) return 0;
 
-    RenderOptions opt;
+    std::string graph_path;
+    glm::ivec2 size;
     try {
-        opt.graph_path = resolve_graph_path(a.pos("GRAPH").empty() ? "variant1_lineao" : a.pos("GRAPH"));
-        opt.size = parse_size(a.get("size"));
+        graph_path = resolve_graph_path(a.pos("GRAPH").empty() ? "variant1_lineao" : a.pos("GRAPH"));
+        size = parse_size(a.get("size"));
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
@@ -129,7 +130,7 @@ int run(const std::vector<std::string>& argv) {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
     glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-    win.w = glfwCreateWindow(opt.size.x, opt.size.y, "pathlet view", nullptr, nullptr);
+    win.w = glfwCreateWindow(size.x, size.y, "pathlet view", nullptr, nullptr);
     if (!win.w) throw std::runtime_error("view: the display offers no OpenGL 4.5 core window");
     glfwMakeContextCurrent(win.w);
     glfwSwapInterval(scripted ? 0 : 1);
@@ -144,30 +145,26 @@ int run(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "%s\n", rt.gl->summary().c_str());
 
     // The graph, compiled and set up once (as render does), then run every shown frame.
-    GraphFile g = parse_graph_file(opt.graph_path);
-    rt.load_graph_plugins(g);
-    std::vector<Diagnostic> diags;
-    apply_overrides(g, a.all("set"), rt.registry, diags);
-    if (!diags.empty()) throw GraphError(diags);
-    const CompiledGraph cg = compile_graph(g, rt.registry, opt.size);
-    if (cg.outputs.empty()) throw std::runtime_error(opt.graph_path + ": the graph has no output to show");
+    const GraphFile g = rt.load_graph(graph_path, a.all("set"));
+    const CompiledGraph cg = compile_graph(g, rt.registry, size);
+    if (cg.outputs.empty()) throw std::runtime_error(graph_path + ": the graph has no output to show");
     GpuScene gpu;
     gpu.upload(scene);
     Executor exec(*rt.gl, cg, gpu);
     exec.setup();
     const std::string gname = graph_display_name(g);
-    json vars = json::object();
-    for (const auto& v : g.variables) vars[v.name] = v.value;
-    const double window = vars.contains("window") && vars["window"].is_number() ? vars["window"].get<double>() : 0.0;
+    double window = 0.0;  // for the title
+    for (const auto& v : g.variables)
+        if (v.name == "window" && v.value.is_number()) window = v.value.get<double>();
 
     view::Playback clock;
     clock.t_min = scene.lines.time_min();
     clock.t_max = scene.lines.time_max();
     clock.playing = !a.has("time");
     clock.t = a.has("time") ? std::stod(a.get("time")) : clock.t_min;
-    const Camera start = a.has("camera") ? CameraPath::load(a.get("camera")).at(clock.t, scene.bounds(), opt.size)
-                                         : frame_bounds(scene.bounds(), opt.size);
-    view::OrbitView cam(start, scene.bounds(), opt.size);
+    const Camera start = a.has("camera") ? CameraPath::load(a.get("camera")).at(clock.t, scene.bounds(), size)
+                                         : frame_bounds(scene.bounds(), size);
+    view::OrbitView cam(start, scene.bounds(), size);
     std::fprintf(stderr, "%s", kHelp);
 
     Image last;
@@ -213,7 +210,7 @@ int run(const std::vector<std::string>& argv) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glClearColor(1, 1, 1, 1);  // the output's background is transparent: show it on white
         glClear(GL_COLOR_BUFFER_BIT);
-        glBlitNamedFramebuffer(fbo, 0, 0, 0, tex.width, tex.height, 0, 0, opt.size.x, opt.size.y, GL_COLOR_BUFFER_BIT,
+        glBlitNamedFramebuffer(fbo, 0, 0, 0, tex.width, tex.height, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
                                GL_NEAREST);
         glDeleteFramebuffers(1, &fbo);
         if (a.has("screenshot") || screenshot_now) last = read_texture(tex.id, tex.width, tex.height, 0, 4);

@@ -82,11 +82,7 @@ std::string resolve_graph_path(const std::string& arg) {
 RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
     RenderResult res;
-    GraphFile g = parse_graph_file(opt.graph_path);
-    rt.load_graph_plugins(g);
-    std::vector<Diagnostic> diags;
-    apply_overrides(g, opt.sets, rt.registry, diags);
-    if (!diags.empty()) throw GraphError(diags);
+    GraphFile g = rt.load_graph(opt.graph_path, opt.sets);
     res.compiled = compile_graph(g, rt.registry, opt.size);
     const CompiledGraph& cg = res.compiled;
     if (!opt.quiet)

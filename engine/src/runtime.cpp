@@ -18,6 +18,15 @@ void Runtime::load_graph_plugins(const GraphFile& g) {
     host.load_dirs(fresh);
 }
 
+GraphFile Runtime::load_graph(const std::string& path, const std::vector<std::string>& sets) {
+    GraphFile g = parse_graph_file(path);
+    load_graph_plugins(g);
+    std::vector<Diagnostic> diags;
+    apply_overrides(g, sets, registry, diags);
+    if (!diags.empty()) throw GraphError(diags);
+    return g;
+}
+
 GlContext& Runtime::ensure_gl(bool quiet) {
     if (!gl) {
         gl = GlContext::create_headless();

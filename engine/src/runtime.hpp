@@ -22,6 +22,9 @@ struct Runtime {
     void load_plugins(const std::vector<std::string>& extra_dirs);
     // Loads the plugin folders a graph file names ("plugin_dirs"), once each.
     void load_graph_plugins(const GraphFile& g);
+    // Parses a graph file, loads its plugin folders and applies --set overrides (GraphError
+    // with every problem): what render, view and graph do before compiling.
+    GraphFile load_graph(const std::string& path, const std::vector<std::string>& sets);
     // Creates the GL context (once) and prints its renderer line unless quiet.
     GlContext& ensure_gl(bool quiet);
     // Text listing plugin problems, to append to "unknown pass type" errors.

@@ -22,6 +22,20 @@ Pathlines one_line(const std::vector<glm::vec3>& p, const std::vector<float>& t,
     return pl;
 }
 
+// n points one unit apart along x, one second apart, speed 1: every interior point on the chord.
+Pathlines straight_line(int n) {
+    std::vector<glm::vec3> p;
+    std::vector<float> t, s;
+    for (int i = 0; i < n; ++i) p.push_back({float(i), 0, 0}), t.push_back(float(i)), s.push_back(1.0f);
+    return one_line(p, t, s);
+}
+
+LineLod built(const Pathlines& pl, float speed_range = 1.0f) {
+    LineLod lod;
+    lod.build(pl, speed_range);
+    return lod;
+}
+
 LineLod::Strips select_all(const LineLod& lod, const Pathlines& pl, float eps) {
     std::vector<GLint> first;
     std::vector<GLsizei> count;
@@ -39,12 +53,8 @@ LineLod::Strips select_all(const LineLod& lod, const Pathlines& pl, float eps) {
 }  // namespace
 
 TEST(LineLod, AStraightUniformLineKeepsOnlyItsEnds) {
-    std::vector<glm::vec3> p;
-    std::vector<float> t, s;
-    for (int i = 0; i < 1000; ++i) p.push_back({float(i), 0, 0}), t.push_back(float(i)), s.push_back(1.0f);
-    Pathlines pl = one_line(p, t, s);
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    Pathlines pl = straight_line(1000);
+    LineLod lod = built(pl);
     LineLod::Strips st = select_all(lod, pl, 1e-3f);
     ASSERT_EQ(st.count.size(), 1u);
     EXPECT_EQ(st.count[0], 2);
@@ -58,8 +68,7 @@ TEST(LineLod, AZigzagIsKeptBelowItsAmplitudeAndDroppedAbove) {
     std::vector<float> t, s;
     for (int i = 0; i <= 100; ++i) p.push_back({float(i), (i % 2) ? 0.5f : 0.0f, 0}), t.push_back(float(i)), s.push_back(1);
     Pathlines pl = one_line(p, t, s);
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    LineLod lod = built(pl);
     EXPECT_EQ(select_all(lod, pl, 0.2f).segments, 100u);  // every point matters
     EXPECT_EQ(select_all(lod, pl, 0.6f).segments, 1u);    // a band 0.5 wide fits a chord at 0.6
 }
@@ -72,8 +81,7 @@ TEST(LineLod, AStraightLineWithUnevenTimeKeepsThePointsTheClipNeeds) {
     for (int i = 0; i <= 10; ++i) p.push_back({float(i), 0, 0}), s.push_back(1);
     t = {0, 1, 2, 3, 4, 9, 10, 11, 12, 13, 14};  // slow between points 4 and 5
     Pathlines pl = one_line(p, t, s);
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    LineLod lod = built(pl);
     EXPECT_GT(select_all(lod, pl, 0.5f).segments, 1u);
 }
 
@@ -82,8 +90,7 @@ TEST(LineLod, SpeedChangesBeyondTheColourToleranceAreKeptAtAnyZoom) {
     std::vector<float> t, s;
     for (int i = 0; i <= 20; ++i) p.push_back({float(i), 0, 0}), t.push_back(float(i)), s.push_back(i == 10 ? 2.0f : 1.0f);
     Pathlines pl = one_line(p, t, s);
-    LineLod lod;
-    lod.build(pl, 10.0f);  // the bump is 10 % of the colour range
+    LineLod lod = built(pl, 10.0f);  // the bump is 10 % of the colour range
     LineLod::Strips st = select_all(lod, pl, 1e6f);
     EXPECT_NE(std::find(st.index.begin(), st.index.end(), 10u), st.index.end());
 }
@@ -108,8 +115,7 @@ TEST(LineLod, EveryDroppedPointIsWithinTheToleranceOfItsSegmentAtItsTime) {
         }
         pl.lines.push_back({first, 300});
     }
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    LineLod lod = built(pl);
     for (float eps : {0.001f, 0.01f, 0.05f, 0.2f}) {
         LineLod::Strips st = select_all(lod, pl, eps);
         size_t k = 0;
@@ -134,12 +140,8 @@ TEST(LineLod, EveryDroppedPointIsWithinTheToleranceOfItsSegmentAtItsTime) {
 // A window's range is widened to the kept points around it, so the kit's time clip still
 // reaches the window's ends exactly.
 TEST(LineLod, AWindowedRangeIsBracketedByKeptPoints) {
-    std::vector<glm::vec3> p;
-    std::vector<float> t, s;
-    for (int i = 0; i < 100; ++i) p.push_back({float(i), 0, 0}), t.push_back(float(i)), s.push_back(1);
-    Pathlines pl = one_line(p, t, s);
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    Pathlines pl = straight_line(100);
+    LineLod lod = built(pl);
     LineLod::Strips st;
     lod.select({40}, {10}, {0}, glm::vec3(0), 1.0f, false, 0.5f, st);
     ASSERT_EQ(st.count.size(), 1u);
@@ -149,12 +151,8 @@ TEST(LineLod, AWindowedRangeIsBracketedByKeptPoints) {
 
 // A pass with a width hook asks for at most 16 data segments per drawn segment.
 TEST(LineLod, MaxSkipBoundsTheDataSegmentsPerDrawnSegment) {
-    std::vector<glm::vec3> p;
-    std::vector<float> t, s;
-    for (int i = 0; i < 1000; ++i) p.push_back({float(i), 0, 0}), t.push_back(float(i)), s.push_back(1);
-    Pathlines pl = one_line(p, t, s);
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    Pathlines pl = straight_line(1000);
+    LineLod lod = built(pl);
     LineLod::Strips st;
     lod.select({0}, {1000}, {0}, glm::vec3(0), 1.0f, false, 0.5f, st, 16);
     for (size_t k = 0; k + 1 < st.index.size(); ++k) ASSERT_LE(st.index[k + 1] - st.index[k], 16u);
@@ -173,8 +171,7 @@ TEST(LineLod, NonFiniteDistancesStayInsideTheLine) {
             pl.velocity.push_back({1, 0, 0});
         }
     pl.lines = {{0, 50}, {50, 50}};
-    LineLod lod;
-    lod.build(pl, 1.0f);
+    LineLod lod = built(pl);
     for (glm::vec3 eye : {glm::vec3(0, 0, 10), glm::vec3(nan)}) {
         LineLod::Strips st;
         lod.select({0, 50}, {50, 50}, {0, 1}, eye, 1.0f, /*perspective=*/true, 0.5f, st);

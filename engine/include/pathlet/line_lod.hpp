@@ -27,10 +27,6 @@ public:
     void build(const Pathlines& lines, float speed_range);
     bool empty() const { return keep_.empty(); }
 
-    // Per point: the simplification tolerance (world units) below which the point is kept;
-    // +inf at line ends and where dropping the point would change its colour.
-    const std::vector<float>& tolerance() const { return keep_; }
-
     // What to draw this frame: per drawn line the point indices kept, as strips for
     // glMultiDrawElements into one index buffer.
     struct Strips {
@@ -50,7 +46,9 @@ public:
                 uint32_t max_skip = UINT32_MAX) const;
 
 private:
-    std::vector<float> keep_;       // per point
+    // Per point: the simplification tolerance (world units) below which the point is kept;
+    // +inf at line ends and where dropping the point would change its colour.
+    std::vector<float> keep_;
     std::vector<Bounds> line_box_;  // per line
 };
 

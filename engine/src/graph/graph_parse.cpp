@@ -384,35 +384,35 @@ private:
 
 }  // namespace
 
+namespace {
+// Sets the 1-based line and column of byte `offset` of `text` on a diagnostic.
+Diagnostic placed(Diagnostic d, const std::string& text, size_t offset) {
+    offset = std::min(offset, text.size());
+    d.line = 1 + int(std::count(text.begin(), text.begin() + long(offset), '\n'));
+    const size_t nl = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
+    d.column = int(offset - (nl == std::string::npos ? 0 : nl + 1)) + 1;
+    return d;
+}
+}  // namespace
+
 GraphFile parse_graph_json(const std::string& text, const std::string& path) {
     // Before parsing: a value nested 100k deep would overflow the stack when it is copied or
     // printed in a message. Graphs are a few levels deep; the cap is io::max_json_depth().
     const int limit = io::max_json_depth();
-    if (io::JsonDepth d = io::json_nesting_depth(text, limit); d.first_too_deep != size_t(-1)) {
-        Diagnostic diag{path, "", "nesting deeper than " + std::to_string(limit) +
-                                      " levels (arrays/objects); a graph needs a handful. PATHLET_MAX_JSON_DEPTH raises the cap"};
-        diag.line = 1 + int(std::count(text.begin(), text.begin() + long(d.first_too_deep), '\n'));
-        diag.column = int(d.first_too_deep - (text.rfind('\n', d.first_too_deep) + 1)) + 1;
-        throw GraphError({diag});
-    }
+    if (io::JsonDepth d = io::json_nesting_depth(text, limit); d.first_too_deep != size_t(-1))
+        throw GraphError({placed({path, "", "nesting deeper than " + std::to_string(limit) +
+                                                " levels (arrays/objects); a graph needs a handful. PATHLET_MAX_JSON_DEPTH raises the cap"},
+                                 text, d.first_too_deep)});
     json root;
     try {
         root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
-        // e.byte is 1-based and points at the last byte read.
-        size_t end = std::min<size_t>(e.byte ? e.byte - 1 : 0, text.size());
-        int line = 1;
-        size_t line_start = 0;
-        for (size_t i = 0; i < end; ++i)
-            if (text[i] == '\n') ++line, line_start = i + 1;
         std::string what = e.what();
         size_t at = what.find(": ", what.find("parse error"));  // drop "[json.exception...] parse error at ...: "
         std::string msg = at == std::string::npos ? what : what.substr(at + 2);
         if (msg.rfind("syntax error", 0) != 0) msg = "syntax error: " + msg;
-        Diagnostic d{path, "", msg};
-        d.line = line;
-        d.column = int(end - line_start) + 1;
-        throw GraphError({d});
+        // e.byte is 1-based and points at the last byte read.
+        throw GraphError({placed({path, "", msg}, text, e.byte ? e.byte - 1 : 0)});
     } catch (const json::out_of_range& e) {
         // A number literal beyond double's range (1e400). nlohmann gives no position: find the token.
         std::string what = e.what();
@@ -420,11 +420,8 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path) {
         std::string token = q == std::string::npos ? "" : what.substr(q + 1, what.rfind('\'') - q - 1);
         Diagnostic d{path, "", "number out of range: " + (token.empty() ? what : "'" + token + "'") +
                                    " does not fit a double (|x| < 1.8e308)"};
-        if (size_t at = token.empty() ? std::string::npos : text.find(token); at != std::string::npos) {
-            d.line = 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
-            d.column = int(at - (text.rfind('\n', at) == std::string::npos ? 0 : text.rfind('\n', at) + 1)) + 1;
-        }
-        throw GraphError({d});
+        const size_t at = token.empty() ? std::string::npos : text.find(token);
+        throw GraphError({at == std::string::npos ? d : placed(d, text, at)});
     }
     Parser p(path);
     GraphFile g = p.parse(root);

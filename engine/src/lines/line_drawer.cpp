@@ -4,19 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include <glm/matrix.hpp>
 
 namespace pathlet::lines {
 
 namespace {
-// The kit's programs that have a width hook: their draws keep the data's resolution (a hooked
-// width is evaluated per data segment, see line_quad.geom). Programs live in the context's cache.
-std::map<const ShaderProgram*, bool>& width_hooked() {
-    static std::map<const ShaderProgram*, bool> m;
-    return m;
-}
+// A program with a width hook (LINE_WIDTH_HOOKED) has the active uniform u_lod_max_skip: its
+// geometry shader splits a drawn segment back into at most this many pieces (kMaxPieces in
+// line_quad.geom), so the level of detail joins no more data segments than that.
+constexpr uint32_t kWidthHookMaxSkip = 16;
 }  // namespace
 
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
@@ -33,9 +30,7 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     if (ctx.params().raw().contains("colormap"))
         all.push_back("LINE_COLORMAP " + std::to_string(colormap_index(ctx.params().s("colormap"))));
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
-    ShaderProgram& prog = ctx.program(files, all);
-    width_hooked()[&prog] = !hooks.width.empty();
-    return prog;
+    return ctx.program(files, all);
 }
 
 Drawer::~Drawer() {
@@ -71,17 +66,17 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPathletBinding, buffer_);
 
     // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
-    // or scale (orthographic), from the viewport the pass has bound.
+    // or scale (orthographic), for the pass's output height.
     const float lod_px = p.f("lod");
     lod_on_ = lod_px > 0.0f && !scene.lod().empty();
+    const bool width_hooked = prog.loc("u_lod_max_skip") >= 0;
+    if (width_hooked) prog.set("u_lod_max_skip", int(kWidthHookMaxSkip));
     if (lod_on_) {
-        GLint vp[4] = {0, 0, 0, 0};
-        glGetIntegerv(GL_VIEWPORT, vp);
         const bool perspective = cam.proj[2][3] < -0.5f;
-        const float scale = 2.0f / (float(std::max(vp[3], 1)) * std::max(std::fabs(cam.proj[1][1]), 1e-12f));
+        const float scale =
+            2.0f / (float(std::max(ctx.output_size().y, 1)) * std::max(std::fabs(cam.proj[1][1]), 1e-12f));
         const glm::vec3 eye = glm::vec3(glm::inverse(cam.view)[3]);
-        auto hooked = width_hooked().find(&prog);
-        const uint32_t max_skip = hooked != width_hooked().end() && hooked->second ? 16 : UINT32_MAX;
+        const uint32_t max_skip = width_hooked ? kWidthHookMaxSkip : UINT32_MAX;
         scene.lod().select(ranges_.first, ranges_.count, ranges_.line, eye, scale, perspective, lod_px, strips_,
                            max_skip);
         upload(index_buffer_, index_capacity_, strips_.index.data(), strips_.index.size() * sizeof(GLuint));
