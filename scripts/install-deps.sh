@@ -6,10 +6,12 @@ PKGS=(
   libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri   # GL 4.5 via EGL; llvmpipe when there is no GPU
   libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev
   libopenimageio-dev openimageio-tools              # image files (tools: OIIO's CMake targets expect them)
+  libfreetype-dev fonts-dejavu-core                 # the overlay's text (time label, legend)
   zlib1g-dev libhdf5-dev                            # .vtp/.vti zlib blocks; 4D flow HDF5 volumes
   libgtest-dev libbenchmark-dev                     # tests and benchmarks
   libembree-dev                                     # ray-traced AO reference of `pathlet quality` (Embree 3)
   xvfb                                              # window tests of `pathlet view` (private X server)
+  python3-numpy python3-pil                         # figure scripts (scripts/aa-figures.sh)
   clang-14 libclang-rt-14-dev llvm-14               # sanitizer build and libFuzzer targets (scripts/sanitize.sh, fuzz.sh)
 )
 OPTIONAL=(ffmpeg)                                   # MP4 export, only if it installs

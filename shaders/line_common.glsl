@@ -13,6 +13,7 @@ uniform vec2 u_window;       // [t0, t1] in seconds
 uniform int u_windowed;      // 0: draw lines whole
 uniform float u_half_width;  // world units, half the quad width (halo included), before the width hook
 uniform float u_halo;        // fraction of the width that is halo (0 = none)
+uniform float u_halo_min_px; // the halo band is never thinner than this on screen (pixels)
 uniform float u_halo_depth;  // push-back at the rim, normalised linear depth
 uniform vec3 u_halo_color;
 uniform vec2 u_depth_range;  // camera near, far
@@ -93,12 +94,25 @@ struct LineFrag {
     float depth01;    // linear depth over [near, far], halo push-back included, in [0,1]
     float halo;       // 0 outside the halo band, then 0..1 from its inner edge to the rim
     bool in_halo;
+    float halo_band;  // width of the halo band in units of s (0 = no halo)
+    float abs_s;      // |s|: 0 on the centre line, 1 at the rim
+    float s_per_px;   // change of s over one pixel across the line
+    float rim_px;     // distance from the pixel centre to the nearer rim, in pixels (>= 0)
+    vec2 rim_dir;     // unit screen direction out of the quad through the nearer rim
     LinePoint point;  // what the hooks see (time, age, arc lengths, speed, line id)
 };
 
 LineFrag line_fragment() {
     LineFrag f;
+    // s runs linearly across the quad, so its screen gradient gives the rim in pixels (before
+    // any discard: derivatives need the whole 2x2 quad).
+    vec2 ds = vec2(dFdx(g_in.s), dFdy(g_in.s));
+    float ds_px = max(length(ds), 1e-6);  // change of s per pixel
     float s = clamp(g_in.s, -1.0, 1.0);
+    f.rim_px = (1.0 - abs(s)) / ds_px;
+    f.abs_s = abs(s);
+    f.s_per_px = ds_px;
+    f.rim_dir = (s < 0.0 ? -ds : ds) / ds_px;
     float c = sqrt(max(1.0 - s * s, 0.0));
     vec3 side = line_safe_normalize(g_in.side, vec3(1.0, 0.0, 0.0));
     f.to_viewer = line_safe_normalize(-g_in.pos_view, vec3(0.0, 0.0, 1.0));
@@ -109,9 +123,13 @@ LineFrag line_fragment() {
     // Convex tube of the hooked radius: the surface bulges towards the viewer by r * sqrt(1 - s^2).
     float near = u_depth_range.x, far = u_depth_range.y;
     f.eye_depth = max(-g_in.pos_view.z - g_in.half_width * c, 1e-6);
-    float inner = 1.0 - u_halo;
-    f.in_halo = u_halo > 0.0 && abs(s) > inner;
-    f.halo = f.in_halo ? clamp((abs(s) - inner) / u_halo, 0.0, 1.0) : 0.0;
+    // The band is u_halo of the half width, but at least u_halo_min_px on screen (a 0.3 px
+    // band only hits a pixel centre here and there: speckles) and at most half the half width.
+    float band = u_halo > 0.0 ? clamp(max(u_halo, u_halo_min_px * ds_px), u_halo, max(u_halo, 0.5)) : 0.0;
+    f.halo_band = band;
+    float inner = 1.0 - band;
+    f.in_halo = band > 0.0 && abs(s) > inner;
+    f.halo = f.in_halo ? clamp((abs(s) - inner) / band, 0.0, 1.0) : 0.0;
     // Halos go back in proportion to their distance into the band: close lines merge, far ones gap.
     f.depth01 = clamp((f.eye_depth - near) / max(far - near, 1e-6) + u_halo_depth * f.halo, 0.0, 1.0);
     float span = max(u_speed_range.y - u_speed_range.x, 1e-12);
@@ -127,8 +145,29 @@ LineFrag line_fragment() {
 
 // The halo is a gradient from half-way to the full halo colour at the rim, so its start
 // still marks the line's edge (the study: halos read by the start and end of the gradient).
+// The tint is averaged over the pixel's footprint across the line (a box filter, exact for
+// the piecewise-linear profile): a line one or two pixels wide gets its halo as an even
+// darkening instead of dark pixels here and there.
+float line_halo_integral(float x, float inner, float band) {  // of the tint weight over |s| in [0, x]
+    float d = clamp(x, inner, 1.0) - inner;
+    return 0.5 * d + 0.25 * d * d / max(band, 1e-6);
+}
 vec3 line_halo_tint(vec3 color, LineFrag f) {
-    return f.in_halo ? mix(color, u_halo_color, 0.5 + 0.5 * f.halo) : color;
+    if (f.halo_band <= 0.0) return color;
+    float inner = 1.0 - f.halo_band;
+    float a = f.abs_s - 0.5 * f.s_per_px, b = min(f.abs_s + 0.5 * f.s_per_px, 1.0);
+    float sum = line_halo_integral(b, inner, f.halo_band) - line_halo_integral(max(a, 0.0), inner, f.halo_band);
+    if (a < 0.0) sum += line_halo_integral(-a, inner, f.halo_band);  // the footprint reaches over the centre
+    float w = sum / max(b - a, 1e-6);
+    return mix(color, u_halo_color, clamp(w, 0.0, 1.0));
+}
+
+// The rim for edge_aa (the line passes' optional `edge` output): rg = 0.5 + 0.5 * outward
+// screen direction, b = distance to the nearer rim in pixels / 2 (clamped to 1), a = 0.2 +
+// 0.8 * width / 4 px (clamped; 0 = no line): the far rim of a thin line bounds its coverage.
+vec4 line_edge(LineFrag f) {
+    float width_px = 2.0 / f.s_per_px;
+    return vec4(0.5 + 0.5 * f.rim_dir, min(f.rim_px * 0.5, 1.0), 0.2 + 0.8 * min(width_px * 0.25, 1.0));
 }
 
 // Screen-door transparency for opaque targets: a fragment of opacity a survives where a 4x4

@@ -3,7 +3,7 @@
 // map through the pass's colour hook, then halo), view-space tube normal + normalised linear
 // depth, zoom (pixels per world unit), optionally the line id. The hook's alpha becomes
 // screen-door coverage: the targets are opaque, so a fading fragment survives on a share of
-// the pixels (alpha 1 keeps them all).
+// the pixels (alpha 1 keeps them all). Optionally the rim in pixels for edge_aa's coverage.
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 
@@ -17,6 +17,9 @@ layout(location = 2) out float o_zoom;
 #ifdef WRITE_LINE_ID
 layout(location = 3) out int o_line_id;
 #endif
+#ifdef WRITE_EDGE  // the rim for edge_aa (line_edge in line_common.glsl)
+layout(location = EDGE_LOCATION) out vec4 o_edge;
+#endif
 
 void main() {
     LineFrag f = line_fragment();
@@ -29,6 +32,9 @@ void main() {
     o_zoom = u_zoom_scale / f.eye_depth;
 #ifdef WRITE_LINE_ID
     o_line_id = g_in.line_id;
+#endif
+#ifdef WRITE_EDGE
+    o_edge = line_edge(f);
 #endif
     gl_FragDepth = line_window_depth(f.depth01);
 }

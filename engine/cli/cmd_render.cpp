@@ -32,6 +32,9 @@ int run(const std::vector<std::string>& argv) {
     a.positional("GRAPH", "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
         .option("time", "T|A:B|A:B:STEP", "", "animation times in seconds (frames at A, A+STEP, ... <= B); default: the data's whole time span in 0.25 s steps")
         .option("size", "WxH", "1280x720", "output size in pixels")
+        .option("ssaa", "N", "1",
+                "supersampling for offline renders: render N x N larger (LineAO radii, filter widths and the "
+                "level of detail scaled with it) and box-filter every frame down to --size (1..8)")
         .option("out", "DIR", "out", "output folder ({out} in the graph's capture patterns)")
         .multi("set", "NAME=VALUE", "override a graph variable or a pass parameter: --set lineao.strength=2")
         .option("camera", "FILE", "", "camera path JSON: {\"keyframes\": [{\"time\", \"eye\", \"target\", \"up\", \"fov\"}]}")
@@ -49,6 +52,7 @@ int run(const std::vector<std::string>& argv) {
     add_scene_options(a);
     a.example("pathlet render", "the phantom through variant1_lineao.json into out/, with a timing table")
         .example("pathlet render isl --time 9 --size 1920x1080", "one frame of illuminated streamlines")
+        .example("pathlet render --time 9 --size 1920x1080 --ssaa 4", "a figure: 4x4 supersampled")
         .example("pathlet render graphs/lineao_debug.json --time 9 --set lineao.samples=58",
                  "every intermediate map of one LineAO frame, with 58 samples")
         .example("pathlet render --data flow.vtp --mesh aorta.glb --time 0:18:0.04 --video flow.mp4",
@@ -74,6 +78,10 @@ int run(const std::vector<std::string>& argv) {
     opt.camera_path = a.get("camera");
     opt.orbit_deg_per_s = a.number("orbit");
     opt.warmup = int(a.integer("warmup"));
+    opt.ssaa = int(a.integer("ssaa"));
+    if (opt.ssaa < 1 || opt.ssaa > 8) throw UsageError("--ssaa must be 1..8 (got " + a.get("ssaa") + ")");
+    if (opt.size.x * opt.ssaa > 16384 || opt.size.y * opt.ssaa > 16384)
+        throw UsageError("--size x --ssaa exceeds 16384 pixels on a side; lower one of them");
     if (opt.warmup < 0) throw UsageError("--warmup must be >= 0");
     opt.video_path = a.get("video");
     if (opt.shard_count > 1 && !opt.video_path.empty())

@@ -39,6 +39,7 @@ struct PassContextImpl {
 const std::string& PassContext::pass_name() const { return impl_->pass().name; }
 const Params& PassContext::params() const { return impl_->params; }
 glm::ivec2 PassContext::output_size() const { return impl_->exec->cg_.output_size; }
+float PassContext::pixel_scale() const { return impl_->exec->cg_.pixel_scale; }
 bool PassContext::connected(const std::string& pin) const { return impl_->binding(pin) != nullptr; }
 
 Texture PassContext::texture(const std::string& pin) const {

@@ -260,4 +260,43 @@ void ensure_parent_dir(const std::string& path) {
     if (ec) throw std::runtime_error(path + ": cannot create directory " + parent.string() + ": " + ec.message());
 }
 
+Image box_downsample(const Image& img, int factor) {
+    if (factor <= 1) return img;
+    Image out;
+    out.width = img.width / factor;
+    out.height = img.height / factor;
+    out.channels = img.channels;
+    out.is_float = img.is_float;
+    out.pixels.assign(size_t(out.width) * size_t(out.height) * size_t(out.channels), 0.0f);
+    const bool weighted = img.channels == 4;
+    const float n = float(factor * factor);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            float sum[4] = {0, 0, 0, 0};
+            for (int j = 0; j < factor; ++j)
+                for (int i = 0; i < factor; ++i) {
+                    const int sx = x * factor + i, sy = y * factor + j;
+                    const float w = weighted ? img.at(sx, sy, 3) : 1.0f;
+                    for (int c = 0; c < img.channels; ++c)
+                        sum[c] += (weighted && c < 3 ? w : 1.0f) * img.at(sx, sy, c);
+                }
+            for (int c = 0; c < out.channels; ++c) {
+                float v = sum[c] / n;
+                if (weighted && c < 3) {
+                    // alpha-weighted mean; where every sample is transparent, the plain mean
+                    float plain = 0.0f;
+                    if (sum[3] <= 0.0f) {
+                        for (int j = 0; j < factor; ++j)
+                            for (int i = 0; i < factor; ++i) plain += img.at(x * factor + i, y * factor + j, c);
+                        v = plain / n;
+                    } else {
+                        v = sum[c] / sum[3];
+                    }
+                }
+                out.at(x, y, c) = v;
+            }
+        }
+    return out;
+}
+
 }  // namespace pathlet

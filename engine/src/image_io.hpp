@@ -36,6 +36,9 @@ Image read_image(const std::string& path);  // throws std::runtime_error naming 
 // Reads mip level `mip` of a 2D texture as float with glGetTextureImage; w, h are that
 // level's size (checked). GL's bottom-up rows are flipped to top row first.
 Image read_texture(GLuint tex, int w, int h, int mip = 0, int channels = 4);
+// Box filter over factor x factor blocks (supersampling's resolve). With 4 channels the colour
+// is averaged weighted by alpha, so transparent pixels add no colour to an edge.
+Image box_downsample(const Image& img, int factor);
 
 // "out/{graph}/{frame:05}.png" -> "out/lineao/00012.png". {name} comes from vars, {frame}
 // and {frame:0N} from `frame`, "{{" and "}}" are literal braces. Throws

@@ -8,6 +8,7 @@
 #include "progress.hpp"
 #include "video_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -83,7 +84,14 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
     RenderResult res;
     GraphFile g = rt.load_graph(opt.graph_path, opt.sets);
-    res.compiled = compile_graph(g, rt.registry, opt.size);
+    for (auto& r : g.resources)
+        if (std::find(opt.keep.begin(), opt.keep.end(), r.name) != opt.keep.end()) r.persistent = true;
+    // Supersampling: the graph runs at N x N the size with its pixel-measured parameters scaled
+    // (PassContext::pixel_scale), and every captured frame is box-filtered back to `size`.
+    const int ssaa = std::max(1, opt.ssaa);
+    const glm::ivec2 render_size = opt.size * ssaa;
+    res.compiled = compile_graph(g, rt.registry, render_size);
+    res.compiled.pixel_scale = float(ssaa);
     const CompiledGraph& cg = res.compiled;
     if (!opt.quiet)
         for (const auto& c : cg.culled) std::fprintf(stderr, "note: pass '%s' culled: %s\n", c.name.c_str(), c.reason.c_str());
@@ -99,10 +107,10 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
     CameraPath path;
     if (!opt.camera_path.empty()) path = CameraPath::load(opt.camera_path);
     Bounds bounds = scene.bounds();
-    Camera base = frame_bounds(bounds, opt.size);
+    Camera base = frame_bounds(bounds, render_size);
     auto camera_at = [&](double t) {
-        Camera c = opt.camera_path.empty() ? base : path.at(t, bounds, opt.size);
-        if (opt.orbit_deg_per_s != 0.0) c = orbit(c, opt.orbit_deg_per_s, t, bounds, opt.size);
+        Camera c = opt.camera_path.empty() ? base : path.at(t, bounds, render_size);
+        if (opt.orbit_deg_per_s != 0.0) c = orbit(c, opt.orbit_deg_per_s, t, bounds, render_size);
         return c;
     };
 
@@ -141,7 +149,7 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
             const auto& rd = cg.resources[size_t(r)];
             if (rd.kind != PinKind::Texture) continue;
             Texture tex = exec.texture(out.resource);
-            Image img = read_texture(tex.id, tex.width, tex.height, 0, 4);
+            Image img = box_downsample(read_texture(tex.id, tex.width, tex.height, 0, 4), ssaa);
             if (opt.write_images && !out.capture.empty()) {
                 std::string file = expand_pattern(out.capture,
                                                   {{"out", opt.out_dir}, {"graph", gname}, {"output", out.resource},

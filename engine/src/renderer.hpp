@@ -28,6 +28,10 @@ struct RenderOptions {
     std::string graph_path;
     std::vector<std::string> sets;   // --set overrides
     glm::ivec2 size{1280, 720};
+    int ssaa = 1;                    // render ssaa x ssaa times larger, box-filter down to `size`
+    // Resources kept out of the pool, so their content is still theirs after the frame (for
+    // reading intermediates back: tests, debugging).
+    std::vector<std::string> keep;
     TimeRange time;
     int repeat = 1;                  // render each time this often (timing runs of one moment)
     std::string out_dir = "out";     // {out} in capture patterns

@@ -5,6 +5,7 @@
 #include <pathlet/shader.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,9 @@ public:
 
     void execute(pathlet::PassContext& ctx) override {
         const auto& p = ctx.params();
-        const float ss = std::max(p.f("sigma_spatial"), 1e-3f);
+        const float ss = std::max(p.f("sigma_spatial") * ctx.pixel_scale(), 1e-3f);
         prog_->use();
-        prog_->set("u_radius", p.i("radius"));
+        prog_->set("u_radius", int(std::lround(float(p.i("radius")) * ctx.pixel_scale())));
         prog_->set("u_inv2_sigma_s2", 1.0f / (2.0f * ss * ss));
         prog_->set("u_inv_sigma_d", 1.0f / std::max(p.f("sigma_depth"), 1e-6f));
         prog_->set("u_normal_power", p.f("normal_power"));

@@ -2,7 +2,8 @@
 // fill_list's fragment stage: every fragment of a pathlet quad becomes a node of its pixel's
 // linked list (seed §III.b: take a node index from the counter, swap it into the head, link
 // the old head), with its colour (speed map, colour hook, halo), its opacity faded at both
-// ends of the pathlet (shaders/line_fade.glsl), its linear depth and its line id.
+// ends of the pathlet (shaders/line_fade.glsl) and by its edge coverage, its linear depth and
+// its line id.
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 #include "line_fade.glsl"
@@ -18,7 +19,8 @@ uniform int u_capacity;  // nodes that fit; beyond it fragments are only counted
 void main() {
     LineFrag f = line_fragment();
     vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
-    float a = c.a * line_end_fade(f.point);
+    // Analytic edge coverage: the rim's last pixel is as opaque as the share of it the quad covers.
+    float a = c.a * line_end_fade(f.point) * clamp(0.5 + f.rim_px, 0.0, 1.0);
     if (a < 0.5 / 255.0) discard;  // invisible: no node
     uint i = atomicAdd(oit_count, 1u);
     if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room

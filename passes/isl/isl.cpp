@@ -12,13 +12,17 @@ namespace lines = pathlet::lines;
 class Isl : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &lines::program(ctx, {"isl.frag"});
+        edge_ = ctx.connected("edge");  // optional: the rims for edge_aa
+        prog_ = &lines::program(ctx, {"isl.frag"}, {}, edge_ ? std::vector<std::string>{"WRITE_EDGE"}
+                                                            : std::vector<std::string>{});
     }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
-        ctx.bind_framebuffer({"color"}, "depth");
+        ctx.bind_framebuffer(edge_ ? std::vector<std::string>{"color", "edge"} : std::vector<std::string>{"color"},
+                             "depth");
         lines::clear_color(0, glm::vec4(p.v3("background"), 1.0f));  // a final image: opaque everywhere
+        if (edge_) lines::clear_color(1, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));  // alpha 0: no line
         lines::clear_depth(1.0f);
 
         prog_->use();
@@ -33,6 +37,7 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
+    bool edge_ = false;
 };
 
 pathlet::PassTypeInfo isl_type() {
@@ -49,7 +54,9 @@ pathlet::PassTypeInfo isl_type() {
         .param_float("diffuse_exponent", 1.0, 0.1, 10.0,
                      "diffuse exponent p (1: Zoeckler's term; larger p darkens lines along the light, cf. Mallo et al.)")
         .output_texture("color", "rgba8", "the lit image; background colour where there are no lines")
-        .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)");
+        .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)")
+        .output_texture("edge", "rgba8", "the nearer rim per pixel for edge_aa, as the gbuffer's (bind it to get it)",
+                        1, 1.0f, /*optional=*/true);
     return b.make<Isl>();
 }
 

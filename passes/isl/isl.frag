@@ -11,6 +11,9 @@ uniform vec4 u_k;      // ambient, diffuse, specular, specular exponent n
 uniform float u_diffuse_exponent;
 
 layout(location = 0) out vec4 o_color;
+#ifdef WRITE_EDGE
+layout(location = 1) out vec4 o_edge;  // the rim for edge_aa
+#endif
 
 void main() {
     LineFrag f = line_fragment();
@@ -22,5 +25,8 @@ void main() {
     float specular = pow(max(sl * sv - lt * vt, 0.0), u_k.w);
     vec3 lit = c.rgb * (u_k.x + u_k.y * diffuse) + vec3(u_k.z * specular);
     o_color = vec4(line_halo_tint(clamp(lit, 0.0, 1.0), f), 1.0);
+#ifdef WRITE_EDGE
+    o_edge = line_edge(f);
+#endif
     gl_FragDepth = line_window_depth(f.depth01);
 }

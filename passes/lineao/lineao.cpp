@@ -84,7 +84,8 @@ public:
         glProgramUniform1fv(id, prog_->loc("u_delta"), L.count, L.delta);
         glProgramUniform4fv(id, prog_->loc("u_kernel"), GLsizei(std::min<size_t>(L.kernel.size(), kMaxKernel)),
                             glm::value_ptr(L.kernel[0]));
-        prog_->set("u_r0", p.f("r0"));
+        prog_->set("u_r0", p.f("r0") * ctx.pixel_scale());
+        prog_->set("u_lod_offset", int(std::lround(std::log2(std::max(ctx.pixel_scale(), 1.0f)))));
         prog_->set("u_line_width", ctx.scene().line_width(p.f("line_width")));
         prog_->set("u_strength", p.f("strength"));
         prog_->set("u_delta0", p.f("delta0"));

@@ -23,6 +23,7 @@ uniform float u_strength;
 uniform float u_delta0;
 uniform bool u_use_pyramid;
 uniform int u_max_lod;
+uniform int u_lod_offset;               // log2 of the pixel scale: level l reads the mip of the same footprint
 uniform bool u_occluder_light;
 uniform vec3 u_light;                   // unit, view space
 uniform float u_exponent;
@@ -51,7 +52,7 @@ void main() {
         float radius = u_r0 + u_growth[l] * width_px;
         // Where level l's samples come from, decided once per level (not per sample).
         bool from_pyramid = u_use_pyramid && l > 0;
-        int lod = from_pyramid ? min(l, u_max_lod) : 0;
+        int lod = from_pyramid ? min(l + u_lod_offset, u_max_lod) : 0;
         ivec2 lod_size = from_pyramid ? textureSize(u_pyramid, lod) : size;
         float sum = 0.0;
         int used = 0;  // n_l: samples on screen and on geometry

@@ -65,7 +65,7 @@ size_t coverage(const Image& color) {
 }  // namespace
 
 TEST(lines, GoldenIsl) {
-    Frame f = render_frame("isl.json", 6.0, {"line_width=1.2", "window=3"}, {"final"});
+    Frame f = render_frame("isl.json", 6.0, {"line_width=1.2", "window=3", "overlay=false"}, {"final"});
     EXPECT_TRUE(matches_golden(f["final"], kGoldens + "isl.png"));
 }
 
@@ -99,8 +99,8 @@ TEST(lines, GbufferBackgroundIsExactlyTheContract) {
 }
 
 TEST(lines, IslBackgroundIsExactlyTheBackgroundColour) {
-    Frame f = render_frame("isl.json", 5.0, {"line_width=1.2", "isl.background=#336699"}, {"final", "depth"});
-    const Image &c = f["final"], &d = f["depth"];
+    Frame f = render_frame("isl.json", 5.0, {"line_width=1.2", "isl.background=#336699"}, {"lit", "depth"});
+    const Image &c = f["lit"], &d = f["depth"];
     size_t bg = 0, lines = 0;
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {

@@ -166,7 +166,7 @@ TEST(Oit, FragmentsBeyondTheMemoryCapAreCountedAsDropped) {
 
 TEST(Oit, GoldensOfBothGraphs) {
     for (const char* g : {"variant2_oit", "variant2_oit_ao"}) {
-        Frame f = render(kSrc + "/graphs/" + g + ".json", {"line_width=1.2", "window=3"}, {"final"});
+        Frame f = render(kSrc + "/graphs/" + g + ".json", {"line_width=1.2", "window=3", "overlay=false"}, {"final"});
         EXPECT_TRUE(matches_golden(f["final"], kHere + "/goldens/" + g + ".png")) << g;
     }
 }

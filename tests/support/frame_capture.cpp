@@ -60,6 +60,7 @@ Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std
     opt.warmup = 0;
     opt.write_images = false;
     opt.quiet = true;
+    opt.keep.insert(opt.keep.end(), names.begin(), names.end());  // read after the frame: not pooled
     Frame f;
     RenderResult res = render(rt, scene, opt, [&](const Executor& ex, size_t) {
         for (const auto& n : names) f.tex[n] = read_resource(ex.texture(n));

@@ -48,7 +48,7 @@ int colormap_index(const std::string& name);
 // The shared line parameters: window, line_width, halo, halo_color, halo_depth, colormap,
 // speed_min, speed_max, background, lod. Declared here once for every line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b);
-// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id.
+// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id and edge.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
 // A G-buffer line pass type: the shared parameters and the G-buffer outputs; add your own
 // parameters and finish with .make<YourPass>().
@@ -109,6 +109,12 @@ private:
     float reference_ = 1.0f;
 };
 
+// Where the lines can be on screen this frame: the scene's bounding box, widened by the line
+// width, projected with the frame's camera, plus pad_px pixels; {x0, y0, x1, y1} in pixels
+// of the output (GL's bottom-left origin, end exclusive), clamped to it. The whole output when
+// the box reaches behind the camera. A post pass scissors to it to skip the empty border.
+glm::ivec4 screen_rect(const PassContext& ctx, int pad_px);
+
 // Clears the bound framebuffer's colour attachment `index` / depth, whatever the masks were.
 void clear_color(int index, glm::vec4 value);
 void clear_color_int(int index, glm::ivec4 value);
@@ -131,6 +137,7 @@ protected:
     ShaderProgram* prog_ = nullptr;
     Drawer drawer_;
     bool write_id_ = false;
+    bool write_edge_ = false;
 };
 
 // A G-buffer line pass whose hook uses the kit's end fade (line_fade.glsl): geometric_fade

@@ -162,6 +162,9 @@ public:
     const std::string& pass_name() const;
     const Params& params() const;
     glm::ivec2 output_size() const;
+    // Render pixels per picture pixel (1; N under `render --ssaa N`). Multiply parameters given
+    // in pixels (radii, widths, tolerances) by it so a supersampled frame looks the same.
+    float pixel_scale() const;
 
     bool connected(const std::string& pin) const;   // optional inputs may be unconnected
     Texture texture(const std::string& pin) const;  // throws naming the pass and pin when unbound

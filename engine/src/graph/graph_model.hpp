@@ -132,6 +132,9 @@ struct CulledPass {
 struct CompiledGraph {
     std::string file, name;
     glm::ivec2 output_size{0};
+    // Pixels of this render per pixel of the picture (render --ssaa N renders N x N larger and
+    // downsamples): passes scale their pixel-measured parameters by it.
+    float pixel_scale = 1.0f;
     std::vector<CompiledPass> passes;        // execution order (enabled, not culled)
     std::vector<CompiledResource> resources;
     std::vector<PoolSlot> slots;

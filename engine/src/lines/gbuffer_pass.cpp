@@ -8,12 +8,18 @@ void GBufferPass::setup(PassContext& ctx) {
     write_id_ = ctx.connected("line_id");  // an optional output: written only when a graph binds it
     std::vector<std::string> defines;
     if (write_id_) defines.push_back("WRITE_LINE_ID");
+    write_edge_ = ctx.connected("edge");
+    if (write_edge_) {
+        defines.push_back("WRITE_EDGE");
+        defines.push_back("EDGE_LOCATION " + std::to_string(write_id_ ? 4 : 3));
+    }
     prog_ = &program(ctx, {"line_gbuffer.frag"}, hooks_, defines);
 }
 
 void GBufferPass::execute(PassContext& ctx) {
     std::vector<std::string> targets{"color", "normal_depth", "zoom"};
     if (write_id_) targets.push_back("line_id");
+    if (write_edge_) targets.push_back("edge");
     ctx.bind_framebuffer(targets, "depth");
 
     // Background values are part of the contract with lineao: colour alpha 0, normal 0,
@@ -23,6 +29,7 @@ void GBufferPass::execute(PassContext& ctx) {
     clear_color(1, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     clear_color(2, glm::vec4(0.0f));
     if (write_id_) clear_color_int(3, glm::ivec4(-1, 0, 0, 0));
+    if (write_edge_) clear_color(write_id_ ? 4 : 3, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));  // alpha 0: no line
     clear_depth(1.0f);
 
     prog_->use();

@@ -67,7 +67,7 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
 
     // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
     // or scale (orthographic), for the pass's output height.
-    const float lod_px = p.f("lod");
+    const float lod_px = p.f("lod") * ctx.pixel_scale();
     lod_on_ = lod_px > 0.0f && !scene.lod().empty();
     const bool width_hooked = prog.loc("u_lod_max_skip") >= 0;
     if (width_hooked) prog.set("u_lod_max_skip", int(kWidthHookMaxSkip));
@@ -91,6 +91,7 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     prog.set("u_windowed", windowed ? 1 : 0);
     prog.set("u_half_width", 0.5f * scene.line_width(p.f("line_width")));
     prog.set("u_halo", p.f("halo"));
+    prog.set("u_halo_min_px", p.f("halo_min_px") * ctx.pixel_scale());
     prog.set("u_halo_depth", p.f("halo_depth"));
     prog.set("u_halo_color", p.v3("halo_color"));
     prog.set("u_depth_range", glm::vec2(cam.near_plane, cam.far_plane));

@@ -1,0 +1,72 @@
+// edge_aa: anti-aliasing that fits a deferred LineAO pipeline. The line kit's G-buffer records
+// each pixel's nearer rim in pixels (the optional `edge` output); after lighting, AO and the
+// wall, this pass blends across those rims by the analytic coverage (edge_aa.frag). One
+// full-screen pass of five fetches, no extra samples: the AO stays computed once per pixel.
+#include <pathlet/lines.hpp>
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+namespace {
+
+class EdgeAA : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "edge_aa.frag"}); }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const pathlet::Params& p = ctx.params();
+        const bool opaque = p.s("alpha") == "opaque";
+        pathlet::Texture src = ctx.texture("color"), dst = ctx.texture("final");
+        if (!p.b("enabled") && !opaque) {  // pass through bit for bit
+            glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width,
+                               dst.height, 1);
+            return;
+        }
+        // Lines can only be inside their screen rectangle: outside it the image is copied (and
+        // flattened: alpha set to 1, the colour is the background's already). The shader runs on
+        // the rectangle only.
+        const glm::ivec4 r = pathlet::lines::screen_rect(ctx, 2);
+        prog_->use();
+        prog_->set("u_opaque", opaque ? 1 : 0);
+        glBindTextureUnit(0, ctx.texture("color").id);
+        glBindTextureUnit(1, ctx.texture(p.b("enabled") ? "edge" : "color").id);
+        glBindTextureUnit(2, ctx.texture("depth").id);
+        prog_->set("u_enabled", p.b("enabled") ? 1 : 0);
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        ctx.bind_framebuffer({"final"});
+        glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width,
+                           dst.height, 1);
+        if (opaque) {
+            const float one[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+            glClearBufferfv(GL_COLOR, 0, one);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(r.x, r.y, r.z - r.x, r.w - r.y);
+        ctx.draw_fullscreen();
+        glDisable(GL_SCISSOR_TEST);
+        for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+};
+
+}  // namespace
+
+PATHLET_PLUGIN("edge_aa", {
+    sink->add(pathlet::PassTypeBuilder("edge_aa",
+                                       "anti-aliased line edges from the G-buffer's analytic rim distance, after "
+                                       "lighting (smooth against the background, the wall and lines behind)")
+                  .param_bool("enabled", true, "blend across the rims (false: the image as it is, only flattened "
+                                               "when alpha = opaque)")
+                  .param_enum("alpha", "opaque", {"opaque", "coverage"},
+                              "opaque: every pixel over the background colour, alpha 1 (video frames); coverage: "
+                              "the background stays transparent and edge pixels get their coverage as alpha")
+                  .input_texture("color", "rgba8", "the finished image: lines lit, wall behind")
+                  .input_texture("edge", "rgba8", "the line pass's `edge` output (rim direction and distance)")
+                  .input_texture("depth", "depth24", "the line pass's z-buffer: which line is in front")
+                  .output_texture("final", "rgba8", "the anti-aliased image")
+                  .make<EdgeAA>());
+})

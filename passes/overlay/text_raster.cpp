@@ -1,0 +1,105 @@
+#include "text_raster.hpp"
+
+#include <ft2build.h>
+#include FT_FREETYPE_H
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+namespace overlay {
+
+struct TextRaster::Impl {
+    FT_Library lib = nullptr;
+    FT_Face face = nullptr;
+};
+
+std::string default_font() {
+    for (const char* f : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+                          "/usr/share/fonts/dejavu/DejaVuSans.ttf"})
+        if (std::filesystem::exists(f)) return f;
+    return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // the error names the expected place
+}
+
+TextRaster::TextRaster(const std::string& font_file, int pixel_size) : impl_(new Impl), size_(pixel_size) {
+    if (FT_Init_FreeType(&impl_->lib)) throw std::runtime_error("FreeType could not start");
+    if (FT_New_Face(impl_->lib, font_file.c_str(), 0, &impl_->face)) {
+        FT_Done_FreeType(impl_->lib);
+        impl_->lib = nullptr;
+        throw std::runtime_error("font '" + font_file +
+                                 "' could not be opened as a font (install fonts-dejavu-core, or set overlay.font)");
+    }
+    FT_Set_Pixel_Sizes(impl_->face, 0, FT_UInt(std::max(pixel_size, 1)));
+}
+
+TextRaster::~TextRaster() {
+    if (impl_->face) FT_Done_Face(impl_->face);
+    if (impl_->lib) FT_Done_FreeType(impl_->lib);
+}
+
+const TextRaster::Glyph& TextRaster::glyph(uint32_t cp) const {
+    auto it = cache_.find(cp);
+    if (it != cache_.end()) return it->second;
+    Glyph g;
+    FT_Face face = impl_->face;
+    if (FT_Load_Char(face, cp, FT_LOAD_RENDER) == 0) {
+        const FT_Bitmap& b = face->glyph->bitmap;
+        g.width = int(b.width);
+        g.rows = int(b.rows);
+        g.left = face->glyph->bitmap_left;
+        g.top = face->glyph->bitmap_top;
+        g.advance = int(face->glyph->advance.x >> 6);
+        g.pixels.resize(size_t(g.width) * size_t(g.rows));
+        for (int y = 0; y < g.rows; ++y)
+            for (int x = 0; x < g.width; ++x) g.pixels[size_t(y * g.width + x)] = b.buffer[y * b.pitch + x];
+    }
+    return cache_.emplace(cp, std::move(g)).first->second;
+}
+
+namespace {
+// UTF-8 to code points; a broken sequence becomes '?'.
+std::vector<uint32_t> decode(const std::string& s) {
+    std::vector<uint32_t> out;
+    for (size_t i = 0; i < s.size();) {
+        const unsigned char c = static_cast<unsigned char>(s[i]);
+        int n = c < 0x80 ? 0 : (c >> 5) == 6 ? 1 : (c >> 4) == 14 ? 2 : (c >> 3) == 30 ? 3 : -1;
+        if (n < 0 || (n > 0 && i + size_t(n) >= s.size())) {
+            out.push_back('?');
+            ++i;
+            continue;
+        }
+        uint32_t cp = n == 0 ? c : (c & (0x3Fu >> n));
+        for (int k = 1; k <= n; ++k) cp = (cp << 6) | (static_cast<unsigned char>(s[i + size_t(k)]) & 0x3Fu);
+        out.push_back(cp);
+        i += size_t(n) + 1;
+    }
+    return out;
+}
+}  // namespace
+
+TextBitmap TextRaster::render(const std::string& utf8) const {
+    const std::vector<uint32_t> cps = decode(utf8);
+    FT_Face face = impl_->face;
+    TextBitmap t;
+    t.ascent = int(face->size->metrics.ascender >> 6);
+    t.height = std::max(1, int((face->size->metrics.ascender - face->size->metrics.descender) >> 6));
+    int width = 0;
+    for (uint32_t cp : cps) width += glyph(cp).advance;
+    t.width = std::max(width, 1);
+    t.coverage.assign(size_t(t.width) * size_t(t.height), 0);
+    int pen = 0;
+    for (uint32_t cp : cps) {
+        const Glyph& g = glyph(cp);
+        for (int y = 0; y < g.rows; ++y)
+            for (int x = 0; x < g.width; ++x) {
+                const int px = pen + g.left + x, py = t.ascent - g.top + y;
+                if (px < 0 || py < 0 || px >= t.width || py >= t.height) continue;
+                uint8_t& dst = t.coverage[size_t(py * t.width + px)];
+                dst = std::max(dst, g.pixels[size_t(y * g.width + x)]);
+            }
+        pen += g.advance;
+    }
+    return t;
+}
+
+}  // namespace overlay

@@ -1,0 +1,45 @@
+// Text to coverage bitmaps with FreeType: one face, one pixel size, glyphs cached.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace overlay {
+
+struct TextBitmap {
+    int width = 0, height = 0;  // height = the face's line height; baseline at `ascent`
+    int ascent = 0;
+    std::vector<uint8_t> coverage;  // row 0 at the top, width * height
+};
+
+class TextRaster {
+public:
+    // Throws std::runtime_error naming the font file when it cannot be opened as a font.
+    TextRaster(const std::string& font_file, int pixel_size);
+    ~TextRaster();
+    TextRaster(const TextRaster&) = delete;
+    TextRaster& operator=(const TextRaster&) = delete;
+
+    TextBitmap render(const std::string& utf8) const;
+    int pixel_size() const { return size_; }
+
+private:
+    struct Glyph {
+        int width = 0, rows = 0, left = 0, top = 0, advance = 0;
+        std::vector<uint8_t> pixels;
+    };
+    const Glyph& glyph(uint32_t codepoint) const;
+
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    int size_ = 0;
+    mutable std::map<uint32_t, Glyph> cache_;
+};
+
+// The default font: DejaVu Sans from Debian's fonts-dejavu-core.
+std::string default_font();
+
+}  // namespace overlay
