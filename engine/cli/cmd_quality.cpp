@@ -237,7 +237,7 @@ int run(const std::vector<std::string>& argv) {
     const double window = vars.contains("window") ? vars["window"].get<double>() : 1.0;
     float width = vars.contains("line_width") ? vars["line_width"].get<float>() : 0.0f;
     const Bounds b = scene.lines.bounds();
-    if (width <= 0) width = 0.0035f * glm::length(b.hi - b.lo);  // GpuScene::auto_line_width
+    if (width <= 0) width = GpuScene::auto_line_width(b);
     const Captured& last = frames.back();
     const Camera cam = frame_bounds(scene.bounds(), opt.size);
     quality::RayTracedAo tracer(visible_tubes(scene.lines, last.time, window, 0.5f * width));

@@ -84,7 +84,7 @@ TEST(GpuSceneTest, AutoLineWidthFollowsTheDataSizeAndRangesClipToTheWindow) {
     Scene scene = tiny_scene();  // x 0..4, y 0..1: diagonal sqrt(17)
     GpuScene gpu;
     gpu.upload(scene);
-    EXPECT_NEAR(gpu.auto_line_width(), 0.0035f * std::sqrt(17.0f), 1e-6f);
+    EXPECT_NEAR(gpu.auto_line_width(), 0.005f * std::sqrt(17.0f), 1e-6f);
     EXPECT_FLOAT_EQ(gpu.line_width(0.0f), gpu.auto_line_width());
     EXPECT_FLOAT_EQ(gpu.line_width(0.7f), 0.7f);
     // Times 0..4 per line: the window [1.5, 2.5] keeps segments 1-2 and 2-3 of both lines.

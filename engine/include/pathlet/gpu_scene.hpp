@@ -50,12 +50,15 @@ public:
     const LineLod& lod() const { return lod_; }
 
     Bounds bounds() const { return bounds_; }
-    // The line width passes use when theirs is 0 ("auto"): 0.35 % of the bounding-box
-    // diagonal, 2-3 px at 720p when the data fills the frame (0.77 mm on the phantom).
-    float auto_line_width() const {
-        float d = bounds_.valid() ? glm::length(bounds_.hi - bounds_.lo) : 0.0f;
-        return d > 0.0f ? 0.0035f * d : 1.0f;
+    // The line width passes use when theirs is 0 ("auto"): 0.5 % of the bounding-box
+    // diagonal, about 3.5 px at 720p when the data fills the frame (1.1 mm on the phantom):
+    // wide enough that a tube, its halo (>= 1 px per rim) and the AO between lines read at
+    // the default framing.
+    static float auto_line_width(const Bounds& b) {
+        float d = b.valid() ? glm::length(b.hi - b.lo) : 0.0f;
+        return d > 0.0f ? 0.005f * d : 1.0f;
     }
+    float auto_line_width() const { return auto_line_width(bounds_); }
     float line_width(float param) const { return param > 0.0f ? param : auto_line_width(); }
     float time_min() const { return tmin_; }
     float time_max() const { return tmax_; }

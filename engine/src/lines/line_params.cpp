@@ -21,8 +21,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b) {
                      "pathlet length in seconds: the parts of the lines with times in [t - window, t] are drawn, "
                      "clipped smoothly inside a segment; <= 0 draws every line whole")
         .param_float("line_width", 0.0, 0.0, 1e4,
-                     "quad width in world units, halo included; 0 = auto: 0.35 % of the data's bounding-box "
-                     "diagonal (~2 px at 720p when the data fills the frame; 0.77 mm on the phantom)")
+                     "quad width in world units, halo included; 0 = auto: 0.5 % of the data's bounding-box "
+                     "diagonal (~3.5 px at 720p when the data fills the frame; 1.1 mm on the phantom)")
         .param_float("halo", 0.2, 0.0, 0.9,
                      "fraction of the width drawn as halo, split between both rims (study: 20 %); 0 = off")
         .param_float("halo_min_px", 1.0, 0.0, 16.0,
