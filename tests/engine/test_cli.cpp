@@ -214,6 +214,11 @@ TEST(Cli, BadSizesAndDirectoriesAreClearErrors) {
         EXPECT_EQ(r.code, 2) << size;
         EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
     }
+    for (const char* ssaa : {"0", "9", "x", "4 --size 8000x100"}) {
+        CliRun r = pathlet_cli(std::string("render --ssaa ") + ssaa + " --no-images");
+        EXPECT_EQ(r.code, 2) << ssaa;
+        EXPECT_NE(r.err.find("ssaa"), std::string::npos) << r.err;
+    }
     CliRun r = pathlet_cli("validate " + std::string(PATHLET_TEST_BINARY_DIR));
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
