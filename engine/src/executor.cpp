@@ -303,6 +303,30 @@ void Executor::setup() {
     gl_.set_scope("");
 }
 
+void Executor::reparam(size_t i) {
+    if (i >= passes_.size()) throw PassError("reparam: no pass " + std::to_string(i));
+    const CompiledPass& cp = cg_.passes[i];
+    PassContextImpl& impl = *contexts_[i];
+    Params old = impl.params;
+    impl.params = Params(cp.name, cp.params);
+    gl_.set_scope(cp.name);
+    try {
+        PassContext ctx(&impl);
+        passes_[i]->setup(ctx);
+    } catch (const std::exception& e) {
+        impl.params = old;  // back to what worked, set up again
+        try {
+            PassContext ctx(&impl);
+            passes_[i]->setup(ctx);
+        } catch (...) {
+        }
+        gl_.set_scope("");
+        throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
+    }
+    check_gl(cp.name, "setup");
+    gl_.set_scope("");
+}
+
 void Executor::run_frame(const FrameInfo& f) {
     frame_ = f;
     // Debug groups cost a message round trip per pass on Mesa; only with PATHLET_GL_DEBUG.

@@ -41,6 +41,10 @@ public:
 
     void setup();                         // resources, pass instances, Pass::setup()
     void run_frame(const FrameInfo& f);   // every pass in order, then history swap
+    // After the owner of the compiled graph changed passes[i].params: the pass sees the new
+    // parameters and its setup() runs again (the Pass contract), without rebuilding anything
+    // else. Throws PassError naming the pass; the pass then keeps its old parameters.
+    void reparam(size_t i);
 
     const CompiledGraph& graph() const { return cg_; }
     Texture texture(const std::string& resource) const;  // current content (after run_frame)

@@ -1,9 +1,16 @@
 // The camera and clock of `pathlet view` without a window: orbit keeps the distance and turns
 // the eye, pan moves eye and target together, zoom scales the distance, reset restores the
 // render's framing; playback loops, stops at the end without loop, scrubs within the span.
+#include "view/file_watch.hpp"
 #include "view/orbit_view.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 using namespace pathlet;
 
@@ -61,4 +68,24 @@ TEST(Playback, LoopsStopsAndScrubsWithinTheSpan) {
     EXPECT_NEAR(p.t, 6.0, 1e-9);  // paused: no change
     p.scrub(-10);
     EXPECT_NEAR(p.t, 2.0, 1e-9);
+}
+
+TEST(FileWatch, ReportsWrittenAppearingAndVanishingFilesOnce) {
+    const std::filesystem::path d = std::filesystem::temp_directory_path() / ("pathlet_watch_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    const std::string a = (d / "a.json").string(), b = (d / "b.frag").string();
+    std::ofstream(a) << "{}";
+    pathlet::view::FileWatch w;
+    w.watch({a, b});
+    EXPECT_TRUE(w.changed().empty()) << "nothing happened yet";
+    std::ofstream(a) << "{\"x\": 1}";  // another size: a change even within the mtime's resolution
+    EXPECT_EQ(w.changed(), std::vector<std::string>{a});
+    EXPECT_TRUE(w.changed().empty()) << "reported once";
+    std::ofstream(b) << "void main() {}";
+    EXPECT_EQ(w.changed(), std::vector<std::string>{b});
+    std::filesystem::remove(a);
+    EXPECT_EQ(w.changed(), std::vector<std::string>{a});
+    const auto files = pathlet::view::graph_and_shader_files(a, {d.string()});
+    EXPECT_NE(std::find(files.begin(), files.end(), b), files.end()) << "shader files of the folders are watched";
+    std::filesystem::remove_all(d);
 }

@@ -41,8 +41,18 @@ std::vector<ScriptEvent> load_script(const std::string& path) {
         } else if (e.contains("scroll")) {
             if (!e["scroll"].is_number()) bad("\"scroll\" must be a number of wheel steps");
             ev.scroll = float(std::clamp(e["scroll"].get<double>(), -1e3, 1e3));
+        } else if (e.contains("set")) {
+            if (!e["set"].is_string() || e["set"].get<std::string>().find('=') == std::string::npos)
+                bad("\"set\" must be \"NAME=VALUE\" as for --set");
+            ev.set = e["set"].get<std::string>();
+        } else if (e.contains("graph")) {
+            if (!e["graph"].is_string() || e["graph"].get<std::string>().empty()) bad("\"graph\" must be a graph file");
+            ev.graph = e["graph"].get<std::string>();
+        } else if (e.contains("reload")) {
+            if (!e["reload"].is_boolean()) bad("\"reload\" must be true");
+            ev.reload = e["reload"].get<bool>();
         } else {
-            bad("an event needs \"key\", \"drag\" or \"scroll\"");
+            bad("an event needs \"key\", \"drag\", \"scroll\", \"set\", \"graph\" or \"reload\"");
         }
         out.push_back(ev);
     }
