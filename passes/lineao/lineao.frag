@@ -29,9 +29,13 @@ uniform vec3 u_light;                   // unit, view space
 uniform float u_exponent;
 uniform uint u_seed;
 uniform float u_spec_cut;               // below this cosine, cos^exponent < 1e-4: skip the pow
+uniform bool u_half;                    // half resolution: this fragment stands for full-res pixel 2p
 
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    // Everything below is in full-resolution pixels; at half resolution a fragment computes the
+    // term of the first pixel of its 2x2 block (lineao_upsample.frag fills in the others).
+    vec2 frag = u_half ? vec2(ivec2(gl_FragCoord.xy) * 2) + 0.5 : gl_FragCoord.xy;
+    ivec2 p = ivec2(frag);
     vec4 nd = texelFetch(u_nd, p, 0);
     if (!nd_is_geometry(nd)) {  // background: skipped, unoccluded
         o_ao = 1.0;
@@ -61,7 +65,7 @@ void main() {
             vec3 w = vec3(rot * k.xy, k.z);
             w = dot(w, n) < 0.0 ? -w : w;  // into the hemisphere of n (side of the tube)
             float len = 0.25 + 0.75 * fract(k.w + rnd.y);
-            ivec2 q = ivec2(floor(gl_FragCoord.xy + w.xy * (len * radius)));
+            ivec2 q = ivec2(floor(frag + w.xy * (len * radius)));
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
             vec4 occ = from_pyramid ? texelFetch(u_pyramid, min(q >> lod, lod_size - 1), lod) : texelFetch(u_nd, q, 0);
             if (!nd_is_geometry(occ)) continue;
