@@ -7,6 +7,9 @@
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
+#include <algorithm>
+#include <vector>
+
 namespace {
 
 const std::vector<std::string> kModes{"backfaces", "whole"};
@@ -15,8 +18,20 @@ class AortaBackface : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         prog_ = &ctx.program({"aorta_backface.vert", "aorta_backface.frag"});
-        normal_sign_ = outward_sign(ctx.scene().cpu(), ccw_outward_);
+        const pathlet::Scene& scene = ctx.scene().cpu();
+        const float simplify = ctx.params().f("simplify");
+        if (scene.mesh && !scene.mesh->empty() && (simplify != simplified_at_ || !vao_)) {
+            // Vertex clustering: the wall is quiet context, and on llvmpipe its vertex work is
+            // the pass's cost (97k triangles of the phantom: 13-16 ms at 720p, lines or not).
+            const pathlet::Bounds b = scene.mesh->bounds();
+            const pathlet::Mesh m = scene.mesh->simplified(simplify * glm::length(b.hi - b.lo));
+            upload(m);
+            normal_sign_ = outward_sign(m, ccw_outward_);
+            simplified_at_ = simplify;
+        }
     }
+
+    ~AortaBackface() override { release(); }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
@@ -48,24 +63,23 @@ public:
         prog_->set("u_color", p.v3("wall_color"));
         prog_->set("u_backfaces_only", p.s("mode") == "backfaces" ? 1 : 0);
         prog_->set("u_normal_sign", normal_sign_);
-        glBindVertexArray(scene.mesh_vao());
-        glDrawElements(GL_TRIANGLES, scene.mesh_index_count(), GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(vao_);
+        glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
         glBindVertexArray(0);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
         glDepthMask(GL_TRUE);
         glDisable(GL_DEPTH_TEST);
-        ctx.stat("wall triangles", double(scene.mesh_index_count() / 3));
+        ctx.stat("wall triangles", double(index_count_ / 3));
     }
 
 private:
     // +1 when the mesh's normals point out of the vessel, -1 when in (marching cubes and
     // exporters differ): the winding's signed volume says which way is out, and the normals
     // either agree with the winding or not.
-    static float outward_sign(const pathlet::Scene& s, bool& ccw_outward) {
+    static float outward_sign(const pathlet::Mesh& m, bool& ccw_outward) {
         ccw_outward = true;
-        if (!s.mesh || s.mesh->empty() || s.mesh->normal.size() != s.mesh->position.size()) return 1.0f;
-        const auto& m = *s.mesh;
+        if (m.empty() || m.normal.size() != m.position.size()) return 1.0f;
         double volume = 0.0, agree = 0.0;
         for (size_t t = 0; t + 2 < m.index.size(); t += 3) {
             const glm::dvec3 a = m.position[m.index[t]], b = m.position[m.index[t + 1]], c = m.position[m.index[t + 2]];
@@ -77,7 +91,41 @@ private:
         return (volume > 0.0) == (agree > 0.0) ? 1.0f : -1.0f;
     }
 
+    // The drawn wall (same layout as GpuScene::mesh_vao: position, normal).
+    void upload(const pathlet::Mesh& m) {
+        release();
+        std::vector<float> v;
+        v.reserve(m.position.size() * 6);
+        for (size_t i = 0; i < m.position.size(); ++i) {
+            const glm::vec3 n = i < m.normal.size() ? m.normal[i] : glm::vec3(0, 0, 1);
+            v.insert(v.end(), {m.position[i].x, m.position[i].y, m.position[i].z, n.x, n.y, n.z});
+        }
+        glCreateBuffers(1, &vbo_);
+        glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(float)), v.data(), 0);
+        glCreateBuffers(1, &ibo_);
+        glNamedBufferStorage(ibo_, GLsizeiptr(std::max<size_t>(m.index.size(), 1) * sizeof(uint32_t)), m.index.data(), 0);
+        glCreateVertexArrays(1, &vao_);
+        glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 6 * sizeof(float));
+        glVertexArrayElementBuffer(vao_, ibo_);
+        for (GLuint loc = 0; loc < 2; ++loc) {
+            glEnableVertexArrayAttrib(vao_, loc);
+            glVertexArrayAttribFormat(vao_, loc, 3, GL_FLOAT, GL_FALSE, loc * 3 * sizeof(float));
+            glVertexArrayAttribBinding(vao_, loc, 0);
+        }
+        index_count_ = GLsizei(m.index.size());
+    }
+    void release() {
+        if (vao_) glDeleteVertexArrays(1, &vao_);
+        if (vbo_) glDeleteBuffers(1, &vbo_);
+        if (ibo_) glDeleteBuffers(1, &ibo_);
+        vao_ = vbo_ = ibo_ = 0;
+        index_count_ = 0;
+    }
+
     pathlet::ShaderProgram* prog_ = nullptr;
+    GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
+    GLsizei index_count_ = 0;
+    float simplified_at_ = -1.0f;
     float normal_sign_ = 1.0f;
     bool ccw_outward_ = true;
 };
@@ -93,6 +141,9 @@ PATHLET_PLUGIN("aorta_backface", {
                               "backfaces: the far side of the vessel, seen through it (the study); whole: every face")
                   .param_color("wall_color", {0.55f, 0.62f, 0.72f}, "wall colour before shading")
                   .param_float("opacity", 0.3, 0.0, 1.0, "how strongly the wall covers the background")
+                  .param_float("simplify", 0.008, 0.0, 0.05,
+                               "cell of the wall's vertex clustering as a fraction of its bounding-box diagonal "
+                               "(0.008: 1.8 mm on the phantom, 97k -> 19k triangles, 11 -> 4 ms at 720p); 0 = the full mesh")
                   .input_texture("color", "rgba8", "the finished image (e.g. bilateral's final)")
                   .input_texture("depth", "depth24", "the G-buffer depth: lines in front hide the wall")
                   .output_texture("final", "rgba8", "the image with the wall behind the lines")

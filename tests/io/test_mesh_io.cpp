@@ -5,6 +5,11 @@
 #include <cmath>
 #include <filesystem>
 #include <cstring>
+#include <algorithm>
+#include <array>
+#include <set>
+
+#include <glm/glm.hpp>
 
 using namespace pathlet;
 using namespace pathlet::io;
@@ -140,4 +145,44 @@ TEST(MeshIo, EmptyMeshFilesAreErrors) {
             EXPECT_NE(std::string(e.what()).find("the file is empty"), std::string::npos) << e.what();
         }
     }
+}
+
+// Vertex clustering (the wall's simplification in aorta_backface): a finely tessellated sphere
+// keeps its shape, its winding and no degenerate or repeated triangle; cell 0 is the mesh as is.
+TEST(MeshSimplify, ClusteringKeepsShapeWindingAndDropsCollapsedTriangles) {
+    Mesh m;
+    const int rings = 60, segs = 120;
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j < segs; ++j) {
+            const double th = M_PI * i / rings, ph = 2 * M_PI * j / segs;
+            m.position.push_back(glm::vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)) * 10.0f);
+        }
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segs; ++j) {
+            const uint32_t a = uint32_t(i * segs + j), b = uint32_t(i * segs + (j + 1) % segs);
+            const uint32_t c = a + uint32_t(segs), d = b + uint32_t(segs);
+            m.index.insert(m.index.end(), {a, c, b, b, c, d});  // outward (counter-clockwise seen from outside)
+        }
+    m.compute_normals();
+    auto volume = [](const Mesh& x) {
+        double v = 0;
+        for (size_t t = 0; t + 2 < x.index.size(); t += 3)
+            v += glm::dot(glm::dvec3(x.position[x.index[t]]),
+                          glm::cross(glm::dvec3(x.position[x.index[t + 1]]), glm::dvec3(x.position[x.index[t + 2]])));
+        return v / 6.0;
+    };
+    const Mesh s = m.simplified(1.5f);
+    EXPECT_LT(s.index.size(), m.index.size() / 3) << "a 1.5-unit cell on a 10-unit sphere removes most triangles";
+    EXPECT_GT(s.index.size(), 300u);
+    EXPECT_NEAR(volume(s) / volume(m), 1.0, 0.08) << "shape and winding kept";
+    std::set<std::array<uint32_t, 3>> seen;
+    for (size_t t = 0; t + 2 < s.index.size(); t += 3) {
+        std::array<uint32_t, 3> k{s.index[t], s.index[t + 1], s.index[t + 2]};
+        ASSERT_TRUE(k[0] != k[1] && k[1] != k[2] && k[0] != k[2]) << "collapsed triangle " << t / 3;
+        std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end());
+        ASSERT_TRUE(seen.insert(k).second) << "repeated triangle " << t / 3;
+        for (uint32_t v : k) ASSERT_LT(v, s.position.size());
+    }
+    ASSERT_EQ(s.normal.size(), s.position.size());
+    EXPECT_EQ(m.simplified(0.0f).index, m.index) << "cell 0: unchanged";
 }

@@ -59,6 +59,10 @@ struct Mesh {
     bool empty() const { return index.empty(); }
     Bounds bounds() const;
     void compute_normals();  // area-weighted vertex normals
+    // Vertex clustering on a grid of `cell` world units: the vertices of a cell merge into
+    // their mean (normals averaged), triangles that collapse or repeat are dropped. Keeps the
+    // winding. For context geometry drawn far more finely than the screen shows it.
+    Mesh simplified(float cell) const;
 };
 
 struct Scene {
