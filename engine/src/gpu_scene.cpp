@@ -27,11 +27,44 @@ GpuScene::~GpuScene() { release(); }
 void GpuScene::release() {
     if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
     if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
-    if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
-    if (mesh_vbo_) glDeleteBuffers(1, &mesh_vbo_);
-    if (mesh_ibo_) glDeleteBuffers(1, &mesh_ibo_);
-    line_vao_ = line_vbo_ = mesh_vao_ = mesh_vbo_ = mesh_ibo_ = 0;
-    mesh_index_count_ = 0;
+    mesh_.release();
+    line_vao_ = line_vbo_ = 0;
+}
+
+void GpuMesh::release() {
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (vbo_) glDeleteBuffers(1, &vbo_);
+    if (ibo_) glDeleteBuffers(1, &ibo_);
+    vao_ = vbo_ = ibo_ = 0;
+    count_ = 0;
+}
+
+void GpuMesh::upload(const Mesh& mesh) {
+    release();
+    if (mesh.empty()) return;
+    Mesh computed;
+    const bool have_normals = mesh.normal.size() == mesh.position.size();
+    if (!have_normals) computed = mesh, computed.compute_normals();
+    const Mesh& m = have_normals ? mesh : computed;
+    std::vector<float> interleaved;
+    interleaved.reserve(m.position.size() * 6);
+    for (size_t i = 0; i < m.position.size(); ++i) {
+        interleaved.insert(interleaved.end(), {m.position[i].x, m.position[i].y, m.position[i].z});
+        interleaved.insert(interleaved.end(), {m.normal[i].x, m.normal[i].y, m.normal[i].z});
+    }
+    glCreateBuffers(1, &vbo_);
+    glNamedBufferStorage(vbo_, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(), 0);
+    glCreateBuffers(1, &ibo_);
+    glNamedBufferStorage(ibo_, GLsizeiptr(m.index.size() * sizeof(uint32_t)), m.index.data(), 0);
+    glCreateVertexArrays(1, &vao_);
+    glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 6 * sizeof(float));
+    glVertexArrayElementBuffer(vao_, ibo_);
+    for (GLuint loc = 0; loc < 2; ++loc) {
+        glEnableVertexArrayAttrib(vao_, loc);
+        glVertexArrayAttribFormat(vao_, loc, 3, GL_FLOAT, GL_FALSE, loc * 3 * sizeof(float));
+        glVertexArrayAttribBinding(vao_, loc, 0);
+    }
+    count_ = GLsizei(m.index.size());
 }
 
 void GpuScene::upload(const Scene& scene) {
@@ -104,29 +137,7 @@ void GpuScene::upload(const Scene& scene) {
     glVertexArrayAttribBinding(line_vao_, 4, 0);
     attrib(5, 1, offsetof(LineVertex, arc));
 
-    if (scene.mesh && !scene.mesh->empty()) {
-        Mesh m = *scene.mesh;
-        if (m.normal.size() != m.position.size()) m.compute_normals();
-        std::vector<float> interleaved;
-        interleaved.reserve(m.position.size() * 6);
-        for (size_t i = 0; i < m.position.size(); ++i) {
-            interleaved.insert(interleaved.end(), {m.position[i].x, m.position[i].y, m.position[i].z});
-            interleaved.insert(interleaved.end(), {m.normal[i].x, m.normal[i].y, m.normal[i].z});
-        }
-        glCreateBuffers(1, &mesh_vbo_);
-        glNamedBufferStorage(mesh_vbo_, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(), 0);
-        glCreateBuffers(1, &mesh_ibo_);
-        glNamedBufferStorage(mesh_ibo_, GLsizeiptr(m.index.size() * sizeof(uint32_t)), m.index.data(), 0);
-        glCreateVertexArrays(1, &mesh_vao_);
-        glVertexArrayVertexBuffer(mesh_vao_, 0, mesh_vbo_, 0, 6 * sizeof(float));
-        glVertexArrayElementBuffer(mesh_vao_, mesh_ibo_);
-        for (GLuint loc = 0; loc < 2; ++loc) {
-            glEnableVertexArrayAttrib(mesh_vao_, loc);
-            glVertexArrayAttribFormat(mesh_vao_, loc, 3, GL_FLOAT, GL_FALSE, loc * 3 * sizeof(float));
-            glVertexArrayAttribBinding(mesh_vao_, loc, 0);
-        }
-        mesh_index_count_ = GLsizei(m.index.size());
-    }
+    if (scene.mesh && !scene.mesh->empty()) mesh_.upload(*scene.mesh);
 }
 
 void GpuScene::ranges(double t0, double t1, Ranges& out) const {

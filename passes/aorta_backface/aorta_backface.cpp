@@ -20,18 +20,17 @@ public:
         prog_ = &ctx.program({"aorta_backface.vert", "aorta_backface.frag"});
         const pathlet::Scene& scene = ctx.scene().cpu();
         const float simplify = ctx.params().f("simplify");
-        if (scene.mesh && !scene.mesh->empty() && (simplify != simplified_at_ || !vao_)) {
+        if (scene.mesh && !scene.mesh->empty() && (simplify != simplified_at_ || !wall_.vao())) {
             // Vertex clustering: the wall is quiet context, and on llvmpipe its vertex work is
             // the pass's cost (97k triangles of the phantom: 13-16 ms at 720p, lines or not).
             const pathlet::Bounds b = scene.mesh->bounds();
             const pathlet::Mesh m = scene.mesh->simplified(simplify * glm::length(b.hi - b.lo));
-            upload(m);
+            wall_.upload(m);
             normal_sign_ = outward_sign(m, ccw_outward_);
             simplified_at_ = simplify;
         }
     }
 
-    ~AortaBackface() override { release(); }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
@@ -63,14 +62,14 @@ public:
         prog_->set("u_color", p.v3("wall_color"));
         prog_->set("u_backfaces_only", p.s("mode") == "backfaces" ? 1 : 0);
         prog_->set("u_normal_sign", normal_sign_);
-        glBindVertexArray(vao_);
-        glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(wall_.vao());
+        glDrawElements(GL_TRIANGLES, wall_.index_count(), GL_UNSIGNED_INT, nullptr);
         glBindVertexArray(0);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
         glDepthMask(GL_TRUE);
         glDisable(GL_DEPTH_TEST);
-        ctx.stat("wall triangles", double(index_count_ / 3));
+        ctx.stat("wall triangles", double(wall_.index_count() / 3));
     }
 
 private:
@@ -91,40 +90,8 @@ private:
         return (volume > 0.0) == (agree > 0.0) ? 1.0f : -1.0f;
     }
 
-    // The drawn wall (same layout as GpuScene::mesh_vao: position, normal).
-    void upload(const pathlet::Mesh& m) {
-        release();
-        std::vector<float> v;
-        v.reserve(m.position.size() * 6);
-        for (size_t i = 0; i < m.position.size(); ++i) {
-            const glm::vec3 n = i < m.normal.size() ? m.normal[i] : glm::vec3(0, 0, 1);
-            v.insert(v.end(), {m.position[i].x, m.position[i].y, m.position[i].z, n.x, n.y, n.z});
-        }
-        glCreateBuffers(1, &vbo_);
-        glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(float)), v.data(), 0);
-        glCreateBuffers(1, &ibo_);
-        glNamedBufferStorage(ibo_, GLsizeiptr(std::max<size_t>(m.index.size(), 1) * sizeof(uint32_t)), m.index.data(), 0);
-        glCreateVertexArrays(1, &vao_);
-        glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 6 * sizeof(float));
-        glVertexArrayElementBuffer(vao_, ibo_);
-        for (GLuint loc = 0; loc < 2; ++loc) {
-            glEnableVertexArrayAttrib(vao_, loc);
-            glVertexArrayAttribFormat(vao_, loc, 3, GL_FLOAT, GL_FALSE, loc * 3 * sizeof(float));
-            glVertexArrayAttribBinding(vao_, loc, 0);
-        }
-        index_count_ = GLsizei(m.index.size());
-    }
-    void release() {
-        if (vao_) glDeleteVertexArrays(1, &vao_);
-        if (vbo_) glDeleteBuffers(1, &vbo_);
-        if (ibo_) glDeleteBuffers(1, &ibo_);
-        vao_ = vbo_ = ibo_ = 0;
-        index_count_ = 0;
-    }
-
     pathlet::ShaderProgram* prog_ = nullptr;
-    GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
-    GLsizei index_count_ = 0;
+    pathlet::GpuMesh wall_;  // the drawn (simplified) wall
     float simplified_at_ = -1.0f;
     float normal_sign_ = 1.0f;
     bool ccw_outward_ = true;

@@ -11,6 +11,24 @@
 
 namespace pathlet {
 
+// A triangle mesh on the GPU: location 0 position, 1 normal (interleaved), indexed; missing
+// normals are computed. The scene's wall is one; a pass may upload its own (e.g. simplified).
+class GpuMesh {
+public:
+    GpuMesh() = default;
+    GpuMesh(const GpuMesh&) = delete;
+    GpuMesh& operator=(const GpuMesh&) = delete;
+    ~GpuMesh() { release(); }
+    void upload(const Mesh& m);  // replaces what was there; needs a current GL context
+    void release();
+    GLuint vao() const { return vao_; }
+    GLsizei index_count() const { return count_; }
+
+private:
+    GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
+    GLsizei count_ = 0;
+};
+
 // Vertex layout of line_vao(): location 0 position (vec3), 1 time (float), 2 velocity (vec3),
 // 3 tangent (vec3, unit, along the line), 4 line id (int, an integer attribute), 5 arc length
 // from the line's first point (float, world units).
@@ -23,11 +41,11 @@ public:
 
     void upload(const Scene& scene);  // needs a current GL context
     const Scene& cpu() const { return *cpu_; }
-    bool has_mesh() const { return mesh_index_count_ > 0; }
+    bool has_mesh() const { return mesh_.index_count() > 0; }
 
     GLuint line_vao() const { return line_vao_; }
-    GLuint mesh_vao() const { return mesh_vao_; }  // location 0 position, 1 normal; indexed
-    GLsizei mesh_index_count() const { return mesh_index_count_; }
+    GLuint mesh_vao() const { return mesh_.vao(); }  // location 0 position, 1 normal; indexed
+    GLsizei mesh_index_count() const { return mesh_.index_count(); }
 
     // Per-line point ranges whose segments overlap [t0, t1] (a segment is kept when any
     // part of it lies in the window). window <= 0 means every line whole.
@@ -73,8 +91,7 @@ private:
     std::vector<float> arc_;  // per point, arc length from its line's first point
     LineLod lod_;
     GLuint line_vao_ = 0, line_vbo_ = 0;
-    GLuint mesh_vao_ = 0, mesh_vbo_ = 0, mesh_ibo_ = 0;
-    GLsizei mesh_index_count_ = 0;
+    GpuMesh mesh_;
     Bounds bounds_;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
 };
