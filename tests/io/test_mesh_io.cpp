@@ -186,3 +186,24 @@ TEST(MeshSimplify, ClusteringKeepsShapeWindingAndDropsCollapsedTriangles) {
     ASSERT_EQ(s.normal.size(), s.position.size());
     EXPECT_EQ(m.simplified(0.0f).index, m.index) << "cell 0: unchanged";
 }
+
+// A fuzzer finding (tinygltf copies a buffer from past the end of the file when the BIN chunk
+// claims more bytes than remain): the container is checked first, with the chunk and byte.
+TEST(IoMesh, GlbChunkPastTheEndIsAClearErrorNotAnOverread) {
+    const std::string src = std::string(PATHLET_SOURCE_DIR) + "/tests/fuzz/regressions/glb/bin_chunk_past_end.glb";
+    std::string dir = iotest::temp_dir();
+    iotest::write_bytes(dir + "/cut.glb", iotest::read_bytes(src));
+    try {
+        load_mesh(dir + "/cut.glb");
+        FAIL() << "a chunk past the end must be refused";
+    } catch (const DataError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("cut.glb"), std::string::npos) << m;
+        EXPECT_NE(m.find("byte 548"), std::string::npos) << m;
+        EXPECT_NE(m.find("claims 104 bytes, only 96 remain"), std::string::npos) << m;
+    }
+    std::string bytes = iotest::read_bytes(src);
+    bytes[8] = char(0xff);  // the header declares more bytes than the file has
+    iotest::write_bytes(dir + "/long.glb", bytes);
+    EXPECT_THROW(load_mesh(dir + "/long.glb"), DataError);
+}

@@ -16,6 +16,7 @@
 #include <glm/gtx/quaternion.hpp>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -175,9 +176,35 @@ bool fenced_read(std::vector<unsigned char>* out, std::string* err, const std::s
     return tinygltf::ReadWholeFile(out, err, path, nullptr);
 }
 
+// The GLB container, checked before tinygltf sees it: tinygltf trusts the BIN chunk's length
+// and copies a buffer from past the end of the file when the chunk claims more bytes than
+// there are (a fuzzer finding: tests/fuzz/regressions/glb/bin_chunk_past_end.glb).
+void check_glb_container(std::string_view bytes, const std::string& file) {
+    auto u32 = [&](size_t at) {
+        uint32_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;  // GLB is little-endian, as every platform Pathlet builds on
+    };
+    if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF") fail_at(file, "GLB header", "not a GLB file (no 'glTF' magic)");
+    if (u32(4) != 2) fail_at(file, "GLB header", "version " + std::to_string(u32(4)) + ", expected 2");
+    const size_t total = u32(8);
+    if (total > bytes.size())
+        fail_at(file, "GLB header", "declares " + std::to_string(total) + " bytes, the file has " +
+                                        std::to_string(bytes.size()) + " (truncated?)");
+    for (size_t at = 12, k = 0; at < total; ++k) {
+        if (total - at < 8) fail_at(file, at_byte(at), "chunk header cut off by the end of the GLB");
+        const size_t len = u32(at);
+        if (len > total - at - 8)
+            fail_at(file, at_byte(at), "chunk " + std::to_string(k) + " claims " + std::to_string(len) +
+                                           " bytes, only " + std::to_string(total - at - 8) + " remain");
+        at += 8 + len;
+    }
+}
+
 }  // namespace
 
 Mesh read_gltf(std::string_view bytes, bool binary, const std::string& file, LoadReport& report) {
+    if (binary) check_glb_container(bytes, file);
     report.format = binary ? "glTF 2.0 binary (.glb)" : "glTF 2.0";
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
