@@ -1,6 +1,6 @@
 // The line kit's hook interface: what a width or colour hook sees of one point of a pathlet.
 // A hook is its own shader file that includes this and defines one function:
-//   width hook, a .geom file:  float line_width_hook(LinePoint p);   // multiplier of the width
+//   width hook, a .geom file:  float line_width_hook(LinePoint p);   // multiplier of the width, 0..4
 //   colour hook, a .frag file: vec4 line_color_hook(vec4 rgba, LinePoint p);
 // The kit links it into the program beside its own stages (shaders/line_quad.geom calls the
 // width hook at every quad corner; line_gbuffer.frag and isl call the colour hook per fragment).

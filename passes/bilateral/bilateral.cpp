@@ -1,6 +1,7 @@
 // bilateral: removes LineAO's fixed noise pattern with a cross-bilateral filter guided by
 // depth and normals (so AO does not leak between lines at different depths), then
 // multiplies AO into the colour. Background pixels pass through untouched.
+#include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
@@ -64,6 +65,8 @@ private:
                 glCopyImageSubData(color.id, GL_TEXTURE_2D, 0, 0, 0, 0, target.id, GL_TEXTURE_2D, 0, 0, 0, 0,
                                    target.width, target.height, 1);
             ctx.bind_framebuffer(targets(out), "depth");
+            // Covered pixels lie inside the lines' screen rectangle: tiles outside it are skipped.
+            pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
             ctx.draw_fullscreen_on_geometry(*prog_);
         } else {
             glDisable(GL_DEPTH_TEST);

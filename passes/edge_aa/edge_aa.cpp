@@ -42,10 +42,10 @@ public:
             glClearBufferfv(GL_COLOR, 0, one);
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(r.x, r.y, r.z - r.x, r.w - r.y);
-        ctx.draw_fullscreen();
-        glDisable(GL_SCISSOR_TEST);
+        {
+            pathlet::lines::ScopedScissor clip(r);
+            ctx.draw_fullscreen();
+        }
         for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
     }
 

@@ -1,6 +1,7 @@
 // gauss_pyramid: normal/depth pyramid for LineAO's per-level sampling (seed eq. 6: level l
 // samples the l-th level). Level 0 copies the input; every further level is a 2x downsample
 // with a binomial (Gaussian) kernel that ignores background, or OpenWalnut's box mips.
+#include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
@@ -33,7 +34,14 @@ public:
             ctx.draw_fullscreen();
         }
         prog_->set("u_mode", mode);
+        // Only the lines' screen rectangle can hold geometry: each level is cleared to
+        // background and the filter runs inside the rectangle (same texels as a full pass).
+        const glm::ivec4 rect = pathlet::lines::screen_rect(ctx, 2);
+        const float background[4] = {0.0f, 0.0f, 0.0f, 1.0f};  // ND_BACKGROUND
         for (int level = 1; level < levels; ++level) {
+            const glm::ivec2 size(std::max(pyr.width >> level, 1), std::max(pyr.height >> level, 1));
+            glClearTexImage(pyr.id, level, GL_RGBA, GL_FLOAT, background);
+            pathlet::lines::ScopedScissor clip(pathlet::lines::rect_at_level(rect, level, 2, size));
             // Level 1 reads the input itself; deeper levels read a view of exactly level-1, so
             // the level being written is never sampled and no texture parameter changes
             // (changing BASE/MAX_LEVEL made llvmpipe wait for the previous draw: ~10 ms a level).

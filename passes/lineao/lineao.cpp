@@ -2,6 +2,7 @@
 // counts, radius growth, delta(l)) and the sample kernel are computed here once per frame
 // and passed as uniforms, so the shader has uniform loop bounds and no recompiles.
 #include <pathlet/gpu_scene.hpp>
+#include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
@@ -129,16 +130,22 @@ public:
         // Unit 1 is never read without the pyramid; binding normal_depth keeps it valid.
         glBindTextureUnit(1, ctx.texture(pyramid_ ? "pyramid" : "normal_depth").id);
         glDisable(GL_BLEND);
+        // Covered pixels lie inside the lines' screen rectangle; outside it the term stays 1.
+        const glm::ivec4 rect = pathlet::lines::screen_rect(ctx, 2);
         if (half_) {
             const float one = 1.0f;
             glClearTexImage(half_tex_, 0, GL_RED, GL_FLOAT, &one);
             glBindFramebuffer(GL_FRAMEBUFFER, half_fbo_);
             glViewport(0, 0, half_size_.x, half_size_.y);
             glDisable(GL_DEPTH_TEST);
-            ctx.draw_fullscreen();  // background texels return 1 at once
+            {
+                pathlet::lines::ScopedScissor clip(pathlet::lines::rect_at_level(rect, 1, 1, half_size_));
+                ctx.draw_fullscreen();  // background texels return 1 at once
+            }
             glClearTexImage(ctx.texture("ao").id, 0, GL_RED, GL_FLOAT, &one);
             upsample_->use();
             glBindTextureUnit(1, half_tex_);
+            pathlet::lines::ScopedScissor clip(rect);
             if (ctx.connected("depth")) {
                 ctx.bind_framebuffer({"ao"}, "depth");
                 ctx.draw_fullscreen_on_geometry(*upsample_);
@@ -151,6 +158,7 @@ public:
             const float one = 1.0f;
             glClearTexImage(ctx.texture("ao").id, 0, GL_RED, GL_FLOAT, &one);
             ctx.bind_framebuffer({"ao"}, "depth");
+            pathlet::lines::ScopedScissor clip(rect);
             ctx.draw_fullscreen_on_geometry(*prog_);
         } else {
             glDisable(GL_DEPTH_TEST);

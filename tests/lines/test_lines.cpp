@@ -3,6 +3,8 @@
 // depth in [0,1], zoom), the time window, halos, determinism and shader errors. The suite is
 // `lines` (lower case) so that `ctest -R lines` selects it.
 #include "camera.hpp"
+#include <pathlet/gpu_scene.hpp>
+#include <pathlet/lines.hpp>
 #include "executor.hpp"
 #include "frame_capture.hpp"
 #include "golden.hpp"
@@ -10,6 +12,7 @@
 #include "renderer.hpp"
 #include "runtime.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -378,4 +381,45 @@ TEST(lines, LevelOfDetailDrawsFewerSegmentsAndKeepsThePicture) {
     const double halo_exact = dark(frame("0", "0.2")["color"]), halo_lod = dark(frame("0.25", "0.2")["color"]);
     ASSERT_GT(halo_exact, 500.0);
     EXPECT_NEAR(halo_lod / halo_exact, 1.0, 0.05) << halo_lod << " dark halo pixels, exact " << halo_exact;
+}
+
+// Post passes (lineao, bilateral, gauss_pyramid, edge_aa) run only inside lines::screen_rect:
+// it must hold every quad a line pass can draw, however wide the lines are set (the widest
+// width drawn is noted by the kit) and however far a width hook widens them (clamped to 4x).
+TEST(lines, ScreenRectHoldsTheWidestQuadAWidthHookCanDraw) {
+    Scene scene;
+    scene.lines.lines.push_back({0, 2});
+    for (float x : {-8.0f, 8.0f}) {  // one horizontal line: its box has no height
+        scene.lines.position.push_back(glm::vec3(x, 0.0f, 0.0f));
+        scene.lines.velocity.push_back(glm::vec3(1.0f, 0.0f, 0.0f));
+        scene.lines.time.push_back(x + 8.0f);
+    }
+    GpuScene gpu;
+    gpu.upload(scene);
+    const glm::ivec2 size(320, 240);
+    Camera cam;  // looking down -z at the line, which spans about two thirds of the width
+    cam.view = glm::lookAt(glm::vec3(0.0f, 0.0f, 30.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    cam.proj = glm::perspective(glm::radians(40.0f), float(size.x) / float(size.y), 1.0f, 100.0f);
+    const float width = 10.0f * gpu.auto_line_width();  // far beyond the auto-width padding
+    // The widest quad: half width = width/2 * 4 (hook clamp); its top and bottom edge in pixels.
+    auto pixel_y = [&](float y) {
+        const glm::vec4 c = cam.proj * cam.view * glm::vec4(0.0f, y, 0.0f, 1.0f);
+        return (c.y / c.w * 0.5f + 0.5f) * float(size.y);
+    };
+    const float half = 0.5f * width * GpuScene::kMaxWidthHook;
+    const float top = pixel_y(half), bottom = pixel_y(-half);
+    const glm::ivec4 before = lines::screen_rect(gpu, cam, size, 0);
+    EXPECT_GT(float(before.y), bottom) << "the test line must be wider than the auto-width padding";
+    gpu.note_line_width(width);
+    const glm::ivec4 r = lines::screen_rect(gpu, cam, size, 0);
+    EXPECT_LE(float(r.y), std::max(bottom, 0.0f));
+    EXPECT_GE(float(r.w), std::min(top, float(size.y)));
+    EXPECT_LT(r.w - r.y, size.y) << "a line far from the frame's edges still skips some rows: " << r.y << ".." << r.w << " for " << bottom << ".." << top;
+}
+
+// A level's rectangle rounds outwards: every texel with a child in the level-0 rectangle is in.
+TEST(lines, RectAtLevelRoundsOutwards) {
+    const glm::ivec4 r = lines::rect_at_level({5, 9, 11, 14}, 2, 0, {100, 100});
+    EXPECT_EQ(r, glm::ivec4(1, 2, 3, 4));  // 5/4, 9/4 down; 11/4, 14/4 up
+    EXPECT_EQ(lines::rect_at_level({0, 0, 7, 7}, 1, 1, {3, 3}), glm::ivec4(0, 0, 3, 3));  // clamped to the level
 }

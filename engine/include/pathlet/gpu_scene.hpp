@@ -7,6 +7,7 @@
 #include <pathlet/line_lod.hpp>
 #include <pathlet/scene.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace pathlet {
@@ -78,6 +79,12 @@ public:
     }
     float auto_line_width() const { return auto_line_width(bounds_); }
     float line_width(float param) const { return param > 0.0f ? param : auto_line_width(); }
+    // The widest line width any line pass has drawn this scene with (world units, before the
+    // width hook, which is clamped to kMaxWidthHook): lines::screen_rect pads by it, so post
+    // passes that skip the border never cut a wide line. Noted by lines::Drawer.
+    static constexpr float kMaxWidthHook = 4.0f;  // = line_quad.geom's clamp
+    void note_line_width(float w) const { widest_line_ = std::max(widest_line_, w); }
+    float widest_line() const { return widest_line_; }
     float time_min() const { return tmin_; }
     float time_max() const { return tmax_; }
     // Robust speed range for colour maps: the 1st and 99th percentile of the point speeds
@@ -94,6 +101,7 @@ private:
     GpuMesh mesh_;
     Bounds bounds_;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
+    mutable float widest_line_ = 0;  // a record of use, not scene data
 };
 
 }  // namespace pathlet

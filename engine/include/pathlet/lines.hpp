@@ -114,6 +114,22 @@ private:
 // of the output (GL's bottom-left origin, end exclusive), clamped to it. The whole output when
 // the box reaches behind the camera. A post pass scissors to it to skip the empty border.
 glm::ivec4 screen_rect(const PassContext& ctx, int pad_px);
+// The same for a scene, camera and output size (what the PassContext form passes in).
+glm::ivec4 screen_rect(const GpuScene& scene, const Camera& camera, glm::ivec2 size, int pad_px);
+
+// Scissors every draw to a rectangle ({x0, y0, x1, y1}, as screen_rect gives) while it lives:
+// `ScopedScissor clip(lines::screen_rect(ctx, pad));` around a post pass's draws.
+class ScopedScissor {
+public:
+    explicit ScopedScissor(glm::ivec4 rect);
+    ~ScopedScissor();
+    ScopedScissor(const ScopedScissor&) = delete;
+    ScopedScissor& operator=(const ScopedScissor&) = delete;
+};
+
+// `rect` (pixels of level 0) on mip `level`: scaled down and rounded outwards, plus pad_px
+// texels of that level, clamped to `size` (the level's size).
+glm::ivec4 rect_at_level(glm::ivec4 rect, int level, int pad_px, glm::ivec2 size);
 
 // Clears the bound framebuffer's colour attachment `index` / depth, whatever the masks were.
 void clear_color(int index, glm::vec4 value);

@@ -89,6 +89,7 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     prog.set("u_proj", cam.proj);
     prog.set("u_window", glm::vec2(float(t) - window, float(t)));
     prog.set("u_windowed", windowed ? 1 : 0);
+    scene.note_line_width(scene.line_width(p.f("line_width")));
     prog.set("u_half_width", 0.5f * scene.line_width(p.f("line_width")));
     prog.set("u_halo", p.f("halo"));
     prog.set("u_halo_min_px", p.f("halo_min_px") * ctx.pixel_scale());
