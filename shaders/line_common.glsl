@@ -12,6 +12,7 @@ uniform mat4 u_proj;
 uniform vec2 u_window;       // [t0, t1] in seconds
 uniform int u_windowed;      // 0: draw lines whole
 uniform float u_half_width;  // world units, half the quad width (halo included), before the width hook
+uniform float u_max_width_hook;  // the width hook's result is clamped to [0, this] (GpuScene::kMaxWidthHook)
 uniform float u_halo;        // fraction of the width that is halo (0 = none)
 uniform float u_halo_min_px; // the halo band is never thinner than this on screen (pixels)
 uniform float u_halo_depth;  // push-back at the rim, normalised linear depth

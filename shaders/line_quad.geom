@@ -33,8 +33,8 @@ void emit_end(vec3 p, vec3 t_view, LinePoint lp) {
     if (dot(side, side) < 1e-12) side = cross(vec3(0.0, 1.0, 0.0), to_viewer);
     if (dot(side, side) < 1e-12) side = cross(vec3(1.0, 0.0, 0.0), to_viewer);
     side = normalize(side);
-    // Clamped to GpuScene::kMaxWidthHook: post passes skip what lies beyond that (screen_rect).
-    float hw = u_half_width * clamp(line_width_hook(lp), 0.0, 4.0);
+    // Clamped: post passes skip what lies beyond the widest quad allowed for (lines::screen_rect).
+    float hw = u_half_width * clamp(line_width_hook(lp), 0.0, u_max_width_hook);
     for (int k = 0; k < 2; ++k) {
         float s = k == 0 ? -1.0 : 1.0;
         g_out.pos_view = p + s * hw * side;

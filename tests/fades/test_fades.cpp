@@ -143,6 +143,27 @@ TEST(LineKit, WidthHookTapersTheQuad) {
     for (int x = 0; x < kSize.x; ++x) ASSERT_LE(wt[size_t(x)], wp[size_t(x)]) << "taper outside the quad at " << x;
 }
 
+// lines::screen_rect allows for a width hook of at most GpuScene::kMaxWidthHook, so the kit
+// clamps the hook there: 10x draws exactly what 4x draws, while 2x and 4x still widen.
+TEST(LineKit, WidthHookIsClampedToWhatThePostPassesAllowFor) {
+    auto coverage = [](const Image& c) {
+        size_t n = 0;
+        for (int y = 0; y < c.height; ++y)
+            for (int x = 0; x < c.width; ++x) n += covered(c, x, y);
+        return double(n);
+    };
+    auto widened = [&](const char* scale) {
+        return render("kit_probe.json", {"probe.probe=widen", std::string("probe.scale=") + scale, "line_width=0.3"});
+    };
+    const double c1 = coverage(widened("1")["color"]), c2 = coverage(widened("2")["color"]);
+    Frame four = widened("4"), ten = widened("10");
+    const double c4 = coverage(four["color"]);
+    ASSERT_GT(c1, 100.0);
+    EXPECT_GT(c2, 1.5 * c1) << c1 << " " << c2;  // pixel rounding: thin lines are not exactly proportional
+    EXPECT_GT(c4, 1.5 * c2) << c2 << " " << c4;
+    EXPECT_EQ(ten["color"].pixels, four["color"].pixels) << "a hook of 10 must draw as 4";
+}
+
 TEST(LineKit, MisspeltUniformIsAnErrorNamingPassProgramAndUniform) {
     try {
         render("kit_probe.json", {"probe.probe=typo"});

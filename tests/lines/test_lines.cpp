@@ -3,8 +3,6 @@
 // depth in [0,1], zoom), the time window, halos, determinism and shader errors. The suite is
 // `lines` (lower case) so that `ctest -R lines` selects it.
 #include "camera.hpp"
-#include <pathlet/gpu_scene.hpp>
-#include <pathlet/lines.hpp>
 #include "executor.hpp"
 #include "frame_capture.hpp"
 #include "golden.hpp"
@@ -14,6 +12,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <pathlet/gpu_scene.hpp>
+#include <pathlet/lines.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -414,7 +414,8 @@ TEST(lines, ScreenRectHoldsTheWidestQuadAWidthHookCanDraw) {
     const glm::ivec4 r = lines::screen_rect(gpu, cam, size, 0);
     EXPECT_LE(float(r.y), std::max(bottom, 0.0f));
     EXPECT_GE(float(r.w), std::min(top, float(size.y)));
-    EXPECT_LT(r.w - r.y, size.y) << "a line far from the frame's edges still skips some rows: " << r.y << ".." << r.w << " for " << bottom << ".." << top;
+    EXPECT_LT(r.w - r.y, size.y) << "a line far from the frame's edges still skips some rows: " << r.y << ".."
+                                 << r.w << " for " << bottom << ".." << top;
 }
 
 // A level's rectangle rounds outwards: every texel with a child in the level-0 rectangle is in.

@@ -91,6 +91,7 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     prog.set("u_windowed", windowed ? 1 : 0);
     scene.note_line_width(scene.line_width(p.f("line_width")));
     prog.set("u_half_width", 0.5f * scene.line_width(p.f("line_width")));
+    prog.set("u_max_width_hook", GpuScene::kMaxWidthHook);
     prog.set("u_halo", p.f("halo"));
     prog.set("u_halo_min_px", p.f("halo_min_px") * ctx.pixel_scale());
     prog.set("u_halo_depth", p.f("halo_depth"));

@@ -8,7 +8,7 @@
 
 namespace {
 
-const std::vector<std::string> kProbes{"age", "arc", "taper", "typo"};
+const std::vector<std::string> kProbes{"age", "arc", "taper", "typo", "widen"};
 
 class KitProbe : public pathlet::lines::GBufferPass {
 public:
@@ -28,7 +28,7 @@ protected:
 PATHLET_PLUGIN("kit_probe", {
     sink->add(pathlet::lines::gbuffer_pass_type("kit_probe", "test fixture: writes what the kit's hooks see")
                   .param_enum("probe", "age", kProbes, "age: R = age; arc: R, G = arc from head, tail / scale; "
-                                                       "taper: width 1 - age; typo: sets a misspelt uniform")
+                                                       "taper: width 1 - age; typo: sets a misspelt uniform; widen: width x scale")
                   .param_float("scale", 1.0, 1e-6, 1e9, "arc length that maps to colour 1")
                   .make<KitProbe>());
 })
