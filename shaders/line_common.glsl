@@ -22,8 +22,8 @@ uniform vec2 u_speed_range;  // speed mapped to colour 0 and 1
 uniform int u_colormap;
 
 vec3 line_safe_normalize(vec3 v, vec3 fallback) {
-    float l = length(v);
-    return l > 1e-12 ? v / l : fallback;
+    float l2 = dot(v, v);  // one inverse square root instead of a square root and three divisions
+    return l2 > 1e-24 ? v * inversesqrt(l2) : fallback;
 }
 
 // Members of the stage interfaces (a block name must match across stages; members too).
@@ -96,6 +96,7 @@ struct LineFrag {
     float halo;       // 0 outside the halo band, then 0..1 from its inner edge to the rim
     bool in_halo;
     float halo_band;  // width of the halo band in units of s (0 = no halo)
+    float inv_halo_band;  // 1 / halo_band (0 when there is no halo)
     float abs_s;      // |s|: 0 on the centre line, 1 at the rim
     float s_per_px;   // change of s over one pixel across the line
     float rim_px;     // distance from the pixel centre to the nearer rim, in pixels (>= 0)
@@ -103,34 +104,44 @@ struct LineFrag {
     LinePoint point;  // what the hooks see (time, age, arc lengths, speed, line id)
 };
 
+// Written for llvmpipe, where every division and square root is paid per fragment and a
+// G-buffer fragment is drawn ~26 times per covered pixel: reciprocals are taken once and the
+// normal needs two inverse square roots (side and v are unit and perpendicular, so the normal
+// is unit without a third).
 LineFrag line_fragment() {
     LineFrag f;
     // s runs linearly across the quad, so its screen gradient gives the rim in pixels (before
     // any discard: derivatives need the whole 2x2 quad).
     vec2 ds = vec2(dFdx(g_in.s), dFdy(g_in.s));
-    float ds_px = max(length(ds), 1e-6);  // change of s per pixel
+    float inv_ds = inversesqrt(max(dot(ds, ds), 1e-12));  // pixels per unit of s
     float s = clamp(g_in.s, -1.0, 1.0);
-    f.rim_px = (1.0 - abs(s)) / ds_px;
     f.abs_s = abs(s);
-    f.s_per_px = ds_px;
-    f.rim_dir = (s < 0.0 ? -ds : ds) / ds_px;
+    f.s_per_px = 1.0 / inv_ds;  // change of s per pixel
+    f.rim_px = (1.0 - f.abs_s) * inv_ds;
+    f.rim_dir = (s < 0.0 ? -ds : ds) * inv_ds;
     float c = sqrt(max(1.0 - s * s, 0.0));
-    vec3 side = line_safe_normalize(g_in.side, vec3(1.0, 0.0, 0.0));
+    // side is unit at both quad ends; between them its interpolation is a little shorter.
+    float side2 = dot(g_in.side, g_in.side);
+    vec3 side = side2 > 1e-24 ? g_in.side * inversesqrt(side2) : vec3(1.0, 0.0, 0.0);
     f.to_viewer = line_safe_normalize(-g_in.pos_view, vec3(0.0, 0.0, 1.0));
     // Circle cross-section: -side, through the view direction, to +side (not a linear blend).
-    vec3 v = line_safe_normalize(f.to_viewer - dot(f.to_viewer, side) * side, vec3(0.0, 0.0, 1.0));
-    f.normal = line_safe_normalize(s * side + c * v, v);
+    // v: the direction to the eye without its side component (the eye is at the origin).
+    vec3 v = -g_in.pos_view + dot(g_in.pos_view, side) * side;
+    float v2 = dot(v, v);
+    v = v2 > 1e-24 ? v * inversesqrt(v2) : vec3(0.0, 0.0, 1.0);
+    f.normal = s * side + c * v;
     f.tangent = line_safe_normalize(g_in.tangent, vec3(0.0, 1.0, 0.0));
     // Convex tube of the hooked radius: the surface bulges towards the viewer by r * sqrt(1 - s^2).
     float near = u_depth_range.x, far = u_depth_range.y;
     f.eye_depth = max(-g_in.pos_view.z - g_in.half_width * c, 1e-6);
     // The band is u_halo of the half width, but at least u_halo_min_px on screen (a 0.3 px
     // band only hits a pixel centre here and there: speckles) and at most half the half width.
-    float band = u_halo > 0.0 ? clamp(max(u_halo, u_halo_min_px * ds_px), u_halo, max(u_halo, 0.5)) : 0.0;
+    float band = u_halo > 0.0 ? clamp(max(u_halo, u_halo_min_px * f.s_per_px), u_halo, max(u_halo, 0.5)) : 0.0;
     f.halo_band = band;
+    f.inv_halo_band = band > 0.0 ? 1.0 / band : 0.0;
     float inner = 1.0 - band;
-    f.in_halo = band > 0.0 && abs(s) > inner;
-    f.halo = f.in_halo ? clamp((abs(s) - inner) / band, 0.0, 1.0) : 0.0;
+    f.in_halo = band > 0.0 && f.abs_s > inner;
+    f.halo = f.in_halo ? clamp((f.abs_s - inner) * f.inv_halo_band, 0.0, 1.0) : 0.0;
     // Halos go back in proportion to their distance into the band: close lines merge, far ones gap.
     f.depth01 = clamp((f.eye_depth - near) / max(far - near, 1e-6) + u_halo_depth * f.halo, 0.0, 1.0);
     float span = max(u_speed_range.y - u_speed_range.x, 1e-12);
@@ -149,16 +160,16 @@ LineFrag line_fragment() {
 // The tint is averaged over the pixel's footprint across the line (a box filter, exact for
 // the piecewise-linear profile): a line one or two pixels wide gets its halo as an even
 // darkening instead of dark pixels here and there.
-float line_halo_integral(float x, float inner, float band) {  // of the tint weight over |s| in [0, x]
+float line_halo_integral(float x, float inner, float inv_band) {  // of the tint weight over |s| in [0, x]
     float d = clamp(x, inner, 1.0) - inner;
-    return 0.5 * d + 0.25 * d * d / max(band, 1e-6);
+    return d * (0.5 + 0.25 * d * inv_band);
 }
 vec3 line_halo_tint(vec3 color, LineFrag f) {
     if (f.halo_band <= 0.0) return color;
     float inner = 1.0 - f.halo_band;
     float a = f.abs_s - 0.5 * f.s_per_px, b = min(f.abs_s + 0.5 * f.s_per_px, 1.0);
-    float sum = line_halo_integral(b, inner, f.halo_band) - line_halo_integral(max(a, 0.0), inner, f.halo_band);
-    if (a < 0.0) sum += line_halo_integral(-a, inner, f.halo_band);  // the footprint reaches over the centre
+    float sum = line_halo_integral(b, inner, f.inv_halo_band) - line_halo_integral(max(a, 0.0), inner, f.inv_halo_band);
+    if (a < 0.0) sum += line_halo_integral(-a, inner, f.inv_halo_band);  // the footprint reaches over the centre
     float w = sum / max(b - a, 1e-6);
     return mix(color, u_halo_color, clamp(w, 0.0, 1.0));
 }

@@ -2,6 +2,7 @@
 // time window and halos as the gbuffer pass: a local-lighting image to compare LineAO with.
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
 
 #include <glm/glm.hpp>
 
@@ -13,8 +14,14 @@ class Isl : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         edge_ = ctx.connected("edge");  // optional: the rims for edge_aa
-        prog_ = &lines::program(ctx, {"isl.frag"}, {}, edge_ ? std::vector<std::string>{"WRITE_EDGE"}
-                                                            : std::vector<std::string>{});
+        std::vector<std::string> defines;
+        if (edge_) defines.push_back("WRITE_EDGE");
+        // Whole exponents are compiled in (setup runs again when a parameter changes).
+        for (const auto& d : pathlet::whole_exponent("ISL_SPECULAR_EXPONENT", ctx.params().f("exponent")))
+            defines.push_back(d);
+        for (const auto& d : pathlet::whole_exponent("ISL_DIFFUSE_EXPONENT", ctx.params().f("diffuse_exponent")))
+            defines.push_back(d);
+        prog_ = &lines::program(ctx, {"isl.frag"}, {}, defines);
     }
 
     void execute(pathlet::PassContext& ctx) override {

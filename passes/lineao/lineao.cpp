@@ -71,8 +71,8 @@ public:
     // Everything that depends only on parameters and the scene is uploaded once here: the
     // program keeps its uniforms, and setup() runs again whenever a parameter changes.
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"fullscreen.vert", "lineao.frag"});
         const auto& p = ctx.params();
+        prog_ = &ctx.program({"fullscreen.vert", "lineao.frag"}, pathlet::whole_exponent("LINEAO_EXPONENT", p.f("exponent")));
         const Levels L = make_levels(p);
         pyramid_ = p.b("use_pyramid") && ctx.connected("pyramid");
         glm::vec3 light = p.v3("light_dir");

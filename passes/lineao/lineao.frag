@@ -3,6 +3,7 @@
 // per-level constant are uniforms (computed once on the CPU in lineao.cpp): cheaper on
 // llvmpipe for sparse line images, and parameter changes need no recompile.
 #include "lineao_common.glsl"
+#include "pow_whole.glsl"
 
 #define MAX_LEVELS 8
 
@@ -79,7 +80,11 @@ void main() {
             float cos_p = max(dot(w, n), 0.0);
             vec3 h = u_light + w;  // zero when w points straight away from the light
             float hn = dot(h, h) > 1e-8 ? dot(normalize(h), no) : 0.0;
+#ifdef LINEAO_EXPONENT  // a whole exponent (lineao.cpp): products instead of pow
+            float spec = hn > u_spec_cut ? pow_whole(hn, LINEAO_EXPONENT) : 0.0;
+#else
             float spec = hn > u_spec_cut ? pow(hn, u_exponent) : 0.0;
+#endif
             float diff = u_occluder_light ? max(dot(no, u_light), 0.0) : 0.0;
             float g_light = 1.0 - min(cos_p * (spec + diff), 1.0);
             sum += g_depth * g_light;

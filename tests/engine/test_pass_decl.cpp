@@ -2,6 +2,9 @@
 #include <pathlet/pass.hpp>
 
 #include <gtest/gtest.h>
+#include <pathlet/shader.hpp>
+
+#include <cmath>
 
 using namespace pathlet;
 
@@ -81,4 +84,16 @@ TEST(Params, UndeclaredNameIsAProgrammingErrorNamingThePass) {
         EXPECT_NE(std::string(e.what()).find("myao"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("radius"), std::string::npos);
     }
+}
+
+// pathlet::whole_exponent: which exponents a pass compiles in as products (shaders/pow_whole.glsl).
+TEST(Shader, WholeExponentDefinesOnlyWholeNumbersInRange) {
+    EXPECT_EQ(pathlet::whole_exponent("E", 50.0f), std::vector<std::string>{"E 50"});
+    EXPECT_EQ(pathlet::whole_exponent("E", 1.0f), std::vector<std::string>{"E 1"});
+    EXPECT_EQ(pathlet::whole_exponent("E", 2047.0f), std::vector<std::string>{"E 2047"});
+    EXPECT_TRUE(pathlet::whole_exponent("E", 50.5f).empty());
+    EXPECT_TRUE(pathlet::whole_exponent("E", 0.5f).empty());
+    EXPECT_TRUE(pathlet::whole_exponent("E", 0.0f).empty());
+    EXPECT_TRUE(pathlet::whole_exponent("E", 2048.0f).empty());  // pow_whole's loop covers 11 bits
+    EXPECT_TRUE(pathlet::whole_exponent("E", std::nanf("")).empty());
 }

@@ -361,3 +361,21 @@ TEST(lineao, AoMagnitudeIsPinned) {
     EXPECT_NEAR(r.bundle_core, 0.822, 0.02);
     EXPECT_NEAR(r.isolated, 1.0, 0.005);
 }
+
+// A whole exponent is compiled in as products (shaders/pow_whole.glsl, pathlet::whole_exponent):
+// it must draw what pow() draws (an exponent a hair off a whole number takes the pow path), and
+// the exponent must matter in this scene, or the comparison would prove nothing.
+TEST(lineao, WholeExponentDrawsWhatPowDraws) {
+    auto max_abs_diff = [](const Image& a, const Image& b) {
+        float m = 0.0f;
+        for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
+        return m;
+    };
+    for (const char* e : {"100", "7"}) {
+        Frame whole = render_frame({std::string("lineao.exponent=") + e});
+        Frame powed = render_frame({std::string("lineao.exponent=") + e + ".0001"});
+        EXPECT_LT(max_abs_diff(whole.ao, powed.ao), 2e-3f) << "exponent " << e;
+    }
+    EXPECT_GT(mean_abs_diff(render_frame({"lineao.exponent=1"}).ao, render_frame({"lineao.exponent=100"}).ao), 1e-3)
+        << "the exponent must change the AO here";
+}

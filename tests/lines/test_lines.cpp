@@ -424,3 +424,22 @@ TEST(lines, RectAtLevelRoundsOutwards) {
     EXPECT_EQ(r, glm::ivec4(1, 2, 3, 4));  // 5/4, 9/4 down; 11/4, 14/4 up
     EXPECT_EQ(lines::rect_at_level({0, 0, 7, 7}, 1, 1, {3, 3}), glm::ivec4(0, 0, 3, 3));  // clamped to the level
 }
+
+// isl compiles whole exponents in as products (shaders/pow_whole.glsl): the image must be what
+// pow() draws (an exponent a hair off a whole number takes the pow path), for the specular and
+// the diffuse exponent, and each must matter, or the comparison would prove nothing.
+TEST(lines, IslWholeExponentsDrawWhatPowDraws) {
+    auto render = [](const std::string& set) {
+        return render_frame("isl.json", 5.0, {"line_width=1.2", "overlay=false", "aa=false", set}, {"final"})["final"];
+    };
+    auto max_abs_diff = [](const Image& a, const Image& b) {
+        float m = 0.0f;
+        for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
+        return m;
+    };
+    for (const char* set : {"isl.exponent=50", "isl.exponent=9", "isl.diffuse_exponent=1", "isl.diffuse_exponent=3"}) {
+        EXPECT_LE(max_abs_diff(render(set), render(std::string(set) + ".0001")), 1.5f / 255.0f) << set;
+    }
+    EXPECT_GT(max_abs_diff(render("isl.exponent=50"), render("isl.exponent=2")), 0.1f);
+    EXPECT_GT(max_abs_diff(render("isl.diffuse_exponent=1"), render("isl.diffuse_exponent=3")), 0.1f);
+}

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -52,6 +53,15 @@ private:
     std::set<std::string> declared_;  // uniform names found in the expanded sources
     std::string files_;               // "a.vert, b.geom, c.frag", for messages
 };
+
+// A pass parameter used as an exponent, as a #define for shaders/pow_whole.glsl: "NAME n" when the
+// value is a whole number in [1, 2047] (x^n by products, the program is rebuilt when it changes),
+// nothing otherwise (the shader falls back to pow()).
+inline std::vector<std::string> whole_exponent(const std::string& name, float value) {
+    const float n = std::round(value);
+    if (n == value && n >= 1.0f && n <= 2047.0f) return {name + " " + std::to_string(int(n))};
+    return {};
+}
 
 // Finds a file on the search path; throws ShaderError listing the directories searched.
 std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs);
