@@ -16,8 +16,14 @@ class Bilateral : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         write_ao_ = ctx.connected("ao_smooth");  // optional: the smoothed AO alone, for per-fragment use
-        prog_ = &ctx.program({"fullscreen.vert", "bilateral.frag"},
-                             write_ao_ ? std::vector<std::string>{"WRITE_AO"} : std::vector<std::string>{});
+        std::vector<std::string> defines;
+        if (write_ao_) defines.push_back("WRITE_AO");
+        // The normal weight's power is compiled in (setup runs again when a parameter changes):
+        // a whole power as products, 0 as no normal weight at all, else pow().
+        const float power = ctx.params().f("normal_power");
+        for (const auto& d : pathlet::whole_exponent("BILATERAL_NORMAL_POWER", power)) defines.push_back(d);
+        if (power == 0.0f) defines.push_back("BILATERAL_NO_NORMAL");
+        prog_ = &ctx.program({"fullscreen.vert", "bilateral.frag"}, defines);
     }
 
     void execute(pathlet::PassContext& ctx) override {
@@ -27,7 +33,7 @@ public:
         prog_->set("u_radius", int(std::lround(float(p.i("radius")) * ctx.pixel_scale())));
         prog_->set("u_inv2_sigma_s2", 1.0f / (2.0f * ss * ss));
         prog_->set("u_inv_sigma_d", 1.0f / std::max(p.f("sigma_depth"), 1e-6f));
-        prog_->set("u_normal_power", p.f("normal_power"));
+        prog_->set("u_normal_power", p.f("normal_power"));  // used only by the pow() variant
         prog_->set("u_enabled", p.b("enabled") ? 1 : 0);
         glBindTextureUnit(1, ctx.texture("normal_depth").id);
         glBindTextureUnit(2, ctx.texture("color").id);

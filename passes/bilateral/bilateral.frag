@@ -4,6 +4,7 @@
 // twice (horizontal into `tmp`, vertical with the multiply): 2(2r+1) taps instead of (2r+1)^2. Uniform loop bounds:
 // on llvmpipe they skip the fetches of background pixels instead of running them masked.
 #include "lineao_common.glsl"
+#include "pow_whole.glsl"
 
 layout(location = 0) out vec4 o_color;
 #ifdef WRITE_AO
@@ -15,7 +16,7 @@ layout(binding = 2) uniform sampler2D u_color;
 uniform int u_radius;
 uniform float u_inv2_sigma_s2;  // 1 / (2 sigma_spatial^2)
 uniform float u_inv_sigma_d;    // 1 / sigma_depth
-uniform float u_normal_power;
+uniform float u_normal_power;  // only when not whole (BILATERAL_NORMAL_POWER) nor 0 (BILATERAL_NO_NORMAL)
 uniform bool u_enabled;
 uniform ivec2 u_step;      // (1,0) or (0,1): one axis of the separable filter; (0,0): full 2-D
 uniform bool u_multiply;   // last pass: write colour * ao; else write the filtered ao alone
@@ -47,10 +48,13 @@ void main() {
                 if (!nd_is_geometry(o)) continue;  // background AO (= 1) must not brighten edges
                 float dz = (o.w - nd.w) * u_inv_sigma_d;
                 float w = exp(-float(i * i + j * j) * u_inv2_sigma_s2 - dz * dz);
-                if (u_normal_power > 0.0) {
-                    float c = max(dot(n, normalize(o.xyz)), 0.0);
-                    w *= u_normal_power == 1.0 ? c : pow(c, u_normal_power);
-                }
+                // The power is compiled in (bilateral.cpp): llvmpipe runs both sides of a select,
+                // so `power == 1 ? c : pow(c, power)` paid for a pow on every tap.
+#if defined(BILATERAL_NORMAL_POWER)
+                w *= pow_whole(max(dot(n, normalize(o.xyz)), 0.0), BILATERAL_NORMAL_POWER);
+#elif !defined(BILATERAL_NO_NORMAL)
+                w *= pow(max(dot(n, normalize(o.xyz)), 0.0), u_normal_power);
+#endif
                 sum += w * texelFetch(u_ao, q, 0).r;
                 wsum += w;
             }

@@ -1,6 +1,7 @@
 // lineao: the LineAO term per pixel (shared/LINEAO.md). The per-level constants (sample
-// counts, radius growth, delta(l)) and the sample kernel are computed here once per frame
-// and passed as uniforms, so the shader has uniform loop bounds and no recompiles.
+// counts, radius growth, delta(l), the kernel's starting angle) are computed here when the
+// parameters change and passed as uniforms, so the shader has uniform loop bounds and no
+// recompiles; the kernel itself is generated in lineao.frag.
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
@@ -16,24 +17,12 @@
 namespace {
 
 constexpr int kMaxLevels = 8;    // = MAX_LEVELS in lineao.frag
-constexpr int kMaxKernel = 512;  // = u_kernel's size; 128 * H(8) = 348 fits
-
-// Van der Corput radical inverse in base 2: well-spread radial offsets in [0,1).
-float radical_inverse(uint32_t i) {
-    uint32_t b = i;
-    b = (b << 16u) | (b >> 16u);
-    b = ((b & 0x55555555u) << 1u) | ((b & 0xAAAAAAAAu) >> 1u);
-    b = ((b & 0x33333333u) << 2u) | ((b & 0xCCCCCCCCu) >> 2u);
-    b = ((b & 0x0F0F0F0Fu) << 4u) | ((b & 0xF0F0F0F0u) >> 4u);
-    b = ((b & 0x00FF00FFu) << 8u) | ((b & 0xFF00FF00u) >> 8u);
-    return float(b) * 2.3283064365386963e-10f;
-}
 
 struct Levels {
     int count = 0;
-    int first[kMaxLevels] = {}, samples[kMaxLevels] = {};
+    int samples[kMaxLevels] = {}, total = 0;
     float growth[kMaxLevels] = {}, delta[kMaxLevels] = {};
-    std::vector<glm::vec4> kernel;
+    glm::vec2 start[kMaxLevels] = {};  // (cos, sin) of the kernel's first angle
 };
 
 Levels make_levels(const pathlet::Params& p) {
@@ -42,11 +31,10 @@ Levels make_levels(const pathlet::Params& p) {
     const int s_h = std::max(1, p.i("samples"));
     const bool running_sum = p.s("radius_growth") == "running_sum";
     const float delta0 = p.f("delta0");
-    const float golden = 2.39996322972865332f;  // golden angle (rad)
     for (int l = 0; l < L.count; ++l) {
         const float fl = float(l), sr = float(L.count);
         L.samples[l] = std::max(1, s_h / (l + 1));  // seed eq. 6
-        L.first[l] = int(L.kernel.size());
+        L.total += L.samples[l];
         // Growth in line widths beyond r0. linear: paper, r0 + l*z(P). running_sum: the
         // authors' 1.5, 4, 7.5, 12 ... shifted so level 0 is r0 too (0, 2.5, 6, 10.5 ...).
         L.growth[l] = running_sum ? 0.5f * fl * (fl + 4.0f) : fl;
@@ -54,14 +42,9 @@ Levels make_levels(const pathlet::Params& p) {
         // last level), guarded above delta0 so smoothstep's edges stay ordered.
         const float d = (1.0f - fl / sr) * (1.0f - fl / sr) * p.f("density_weight");
         L.delta[l] = std::max(d, delta0 + std::max(1e-6f, delta0 * 1e-3f));
-        // Fibonacci hemisphere around +z (uniform in area), rotated per level.
-        const int n = L.samples[l];
-        for (int i = 0; i < n; ++i) {
-            const float z = 1.0f - (float(i) + 0.5f) / float(n);
-            const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-            const float phi = float(i) * golden + 1.3f * fl;
-            L.kernel.emplace_back(r * std::cos(phi), r * std::sin(phi), z, radical_inverse(uint32_t(i)));
-        }
+        // The kernel, a Fibonacci hemisphere around +z (uniform in area) with a van der Corput
+        // radial sequence, is generated in lineao.frag; each level starts at its own angle.
+        L.start[l] = glm::vec2(std::cos(1.3f * fl), std::sin(1.3f * fl));
     }
     return L;
 }
@@ -79,12 +62,10 @@ public:
         light = glm::length(light) > 1e-6f ? glm::normalize(light) : glm::vec3(0, 0, 1);
         const GLuint id = prog_->id();
         prog_->set("u_levels", L.count);
-        glProgramUniform1iv(id, prog_->loc("u_first"), L.count, L.first);
         glProgramUniform1iv(id, prog_->loc("u_count"), L.count, L.samples);
         glProgramUniform1fv(id, prog_->loc("u_growth"), L.count, L.growth);
         glProgramUniform1fv(id, prog_->loc("u_delta"), L.count, L.delta);
-        glProgramUniform4fv(id, prog_->loc("u_kernel"), GLsizei(std::min<size_t>(L.kernel.size(), kMaxKernel)),
-                            glm::value_ptr(L.kernel[0]));
+        glProgramUniform2fv(id, prog_->loc("u_level_dir"), L.count, glm::value_ptr(L.start[0]));
         prog_->set("u_r0", p.f("r0") * ctx.pixel_scale());
         prog_->set("u_lod_offset", int(std::lround(std::log2(std::max(ctx.pixel_scale(), 1.0f)))));
         prog_->set("u_line_width", ctx.scene().line_width(p.f("line_width")));
@@ -97,7 +78,7 @@ public:
         prog_->set("u_exponent", p.f("exponent"));
         prog_->set("u_spec_cut", std::pow(1e-4f, 1.0f / p.f("exponent")));
         glProgramUniform1ui(id, prog_->loc("u_seed"), uint32_t(p.i("seed")));
-        samples_ = double(L.kernel.size());
+        samples_ = double(L.total);
 
         // Half resolution: the term for one pixel in four into a private texture, then a
         // depth-aware upsampling into `ao` (lineao_upsample.frag).

@@ -1,7 +1,7 @@
 #version 450 core
 // LineAO (Eichelbaum et al. 2013) as specified in shared/LINEAO.md. Loop bounds and every
-// per-level constant are uniforms (computed once on the CPU in lineao.cpp): cheaper on
-// llvmpipe for sparse line images, and parameter changes need no recompile.
+// per-level constant are uniforms (computed on the CPU in lineao.cpp), so parameter changes
+// need no recompile; the sample kernel is generated in the loop (level_samples).
 #include "lineao_common.glsl"
 #include "pow_whole.glsl"
 
@@ -13,11 +13,10 @@ layout(binding = 1) uniform sampler2D u_pyramid;  // mip l = level l (only read 
 layout(binding = 2) uniform sampler2D u_zoom;     // px per world unit at the fragment
 
 uniform int u_levels;                   // s_r
-uniform int u_first[MAX_LEVELS];        // level l's first kernel vector
 uniform int u_count[MAX_LEVELS];        // s_h / (l + 1)
 uniform float u_growth[MAX_LEVELS];     // r_l = r0 + growth_l * line width on screen
 uniform float u_delta[MAX_LEVELS];      // delta(l), already guarded > delta0
-uniform vec4 u_kernel[512];             // xyz: unit hemisphere direction (+z), w: radial base in [0,1)
+uniform vec2 u_level_dir[MAX_LEVELS];   // (cos, sin) of level l's starting angle in the Fibonacci spiral
 uniform float u_r0;                     // px
 uniform float u_line_width;             // world units
 uniform float u_strength;
@@ -39,11 +38,19 @@ void level_samples(const bool pyramid, int l, int lod, ivec2 lod_size, ivec2 siz
                    mat2 rot, float rnd_y, float radius, out float sum, out int used) {
     sum = 0.0;
     used = 0;  // n_l: samples on screen and on geometry
-    for (int i = 0; i < u_count[l]; ++i) {
-        vec4 k = u_kernel[u_first[l] + i];
-        vec3 w = vec3(rot * k.xy, k.z);
+    // Level l's kernel, generated as it is used (a uniform array indexed by the loop counter is
+    // a per-lane gather on llvmpipe: a fifth of the pass): sample i of n is the Fibonacci
+    // hemisphere direction at height z = 1 - (i + 1/2)/n and angle i * golden + start, turned by
+    // the pixel's rotation (one complex product per sample), with the van der Corput radial base.
+    const vec2 golden = vec2(-0.7373688780783201, 0.6754902942615235);  // (cos, sin) of the golden angle
+    vec2 dir = rot * u_level_dir[l];
+    float inv_n = 1.0 / float(u_count[l]);
+    for (int i = 0; i < u_count[l]; ++i, dir = vec2(dir.x * golden.x - dir.y * golden.y, dir.x * golden.y + dir.y * golden.x)) {
+        float z = 1.0 - (float(i) + 0.5) * inv_n;
+        vec3 w = vec3(sqrt(max(1.0 - z * z, 0.0)) * dir, z);
         w = dot(w, n) < 0.0 ? -w : w;  // into the hemisphere of n (side of the tube)
-        float len = 0.25 + 0.75 * fract(k.w + rnd_y);
+        float radial = float(bitfieldReverse(uint(i))) * 2.3283064365386963e-10;  // van der Corput
+        float len = 0.25 + 0.75 * fract(radial + rnd_y);
         ivec2 q = ivec2(floor(frag + w.xy * (len * radius)));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
         vec4 occ = pyramid ? texelFetch(u_pyramid, min(q >> lod, lod_size - 1), lod) : texelFetch(u_nd, q, 0);

@@ -149,6 +149,12 @@ Regions measure(const Frame& f, float min_nz = -1.0f) {
     return r;
 }
 
+float max_abs_diff(const Image& a, const Image& b) {
+    float m = 0.0f;
+    for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
+    return m;
+}
+
 double mean_abs_diff(const Image& a, const Image& b) {
     double s = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i) s += std::fabs(a.pixels[i] - b.pixels[i]);
@@ -366,11 +372,6 @@ TEST(lineao, AoMagnitudeIsPinned) {
 // it must draw what pow() draws (an exponent a hair off a whole number takes the pow path), and
 // the exponent must matter in this scene, or the comparison would prove nothing.
 TEST(lineao, WholeExponentDrawsWhatPowDraws) {
-    auto max_abs_diff = [](const Image& a, const Image& b) {
-        float m = 0.0f;
-        for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
-        return m;
-    };
     for (const char* e : {"100", "7"}) {
         Frame whole = render_frame({std::string("lineao.exponent=") + e});
         Frame powed = render_frame({std::string("lineao.exponent=") + e + ".0001"});
@@ -378,4 +379,26 @@ TEST(lineao, WholeExponentDrawsWhatPowDraws) {
     }
     EXPECT_GT(mean_abs_diff(render_frame({"lineao.exponent=1"}).ao, render_frame({"lineao.exponent=100"}).ao), 1e-3)
         << "the exponent must change the AO here";
+}
+
+// bilateral compiles its normal weight's power in (a whole power as products, 0 as no normal
+// weight): each variant must draw what pow() draws with a power a hair away, and the power must
+// matter in this scene, or the comparison would prove nothing.
+TEST(lineao, BilateralCompiledNormalPowerDrawsWhatPowDraws) {
+    for (const char* e : {"1", "3"}) {
+        Frame whole = render_frame({std::string("bilateral.normal_power=") + e});
+        Frame powed = render_frame({std::string("bilateral.normal_power=") + e + ".0001"});
+        std::printf("bilateral normal_power %s against %s.0001: max |difference| %.2e\n", e, e,
+                    max_abs_diff(whole.final_img, powed.final_img));
+        EXPECT_LT(max_abs_diff(whole.final_img, powed.final_img), 1.5f / 255.0f) << "normal_power " << e;
+    }
+    // pow(c, 0.0001) is ~1 except where normals face away (c = 0): the mean stays tiny.
+    const Frame none = render_frame({"bilateral.normal_power=0"});
+    const double near_zero = mean_abs_diff(none.final_img, render_frame({"bilateral.normal_power=0.0001"}).final_img);
+    std::printf("bilateral normal_power 0 against 0.0001: mean |difference| %.2e\n", near_zero);
+    EXPECT_LT(near_zero, 2e-4) << "normal_power 0 (no normal weight) against pow(c, 0.0001)";
+    const double matters = mean_abs_diff(none.final_img, render_frame({"bilateral.normal_power=8"}).final_img);
+    std::printf("bilateral normal_power 0 against 8: mean |difference| %.2e\n", matters);
+    EXPECT_GT(matters, 1e-4)
+        << "the normal weight must change the image here";
 }
