@@ -1,8 +1,8 @@
 // Parameter declarations: one declaration drives validation, --set text and the docs.
 #include <pathlet/pass.hpp>
+#include <pathlet/shader.hpp>
 
 #include <gtest/gtest.h>
-#include <pathlet/shader.hpp>
 
 #include <cmath>
 

@@ -5,6 +5,7 @@
 #include "executor.hpp"
 #include "golden.hpp"
 #include "image_io.hpp"
+#include "image_probes.hpp"
 #include "renderer.hpp"
 
 #include <gtest/gtest.h>
@@ -147,12 +148,6 @@ Regions measure(const Frame& f, float min_nz = -1.0f) {
     if (r.bundle_core_px) r.bundle_core /= r.bundle_core_px;
     if (r.isolated_px) r.isolated /= r.isolated_px;
     return r;
-}
-
-float max_abs_diff(const Image& a, const Image& b) {
-    float m = 0.0f;
-    for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
-    return m;
 }
 
 double mean_abs_diff(const Image& a, const Image& b) {
@@ -375,7 +370,7 @@ TEST(lineao, WholeExponentDrawsWhatPowDraws) {
     for (const char* e : {"100", "7"}) {
         Frame whole = render_frame({std::string("lineao.exponent=") + e});
         Frame powed = render_frame({std::string("lineao.exponent=") + e + ".0001"});
-        EXPECT_LT(max_abs_diff(whole.ao, powed.ao), 2e-3f) << "exponent " << e;
+        EXPECT_LT(max_abs_difference(whole.ao, powed.ao), 2e-3f) << "exponent " << e;
     }
     EXPECT_GT(mean_abs_diff(render_frame({"lineao.exponent=1"}).ao, render_frame({"lineao.exponent=100"}).ao), 1e-3)
         << "the exponent must change the AO here";
@@ -389,8 +384,8 @@ TEST(lineao, BilateralCompiledNormalPowerDrawsWhatPowDraws) {
         Frame whole = render_frame({std::string("bilateral.normal_power=") + e});
         Frame powed = render_frame({std::string("bilateral.normal_power=") + e + ".0001"});
         std::printf("bilateral normal_power %s against %s.0001: max |difference| %.2e\n", e, e,
-                    max_abs_diff(whole.final_img, powed.final_img));
-        EXPECT_LT(max_abs_diff(whole.final_img, powed.final_img), 1.5f / 255.0f) << "normal_power " << e;
+                    max_abs_difference(whole.final_img, powed.final_img));
+        EXPECT_LT(max_abs_difference(whole.final_img, powed.final_img), 1.5f / 255.0f) << "normal_power " << e;
     }
     // pow(c, 0.0001) is ~1 except where normals face away (c = 0): the mean stays tiny.
     const Frame none = render_frame({"bilateral.normal_power=0"});
@@ -399,6 +394,5 @@ TEST(lineao, BilateralCompiledNormalPowerDrawsWhatPowDraws) {
     EXPECT_LT(near_zero, 2e-4) << "normal_power 0 (no normal weight) against pow(c, 0.0001)";
     const double matters = mean_abs_diff(none.final_img, render_frame({"bilateral.normal_power=8"}).final_img);
     std::printf("bilateral normal_power 0 against 8: mean |difference| %.2e\n", matters);
-    EXPECT_GT(matters, 1e-4)
-        << "the normal weight must change the image here";
+    EXPECT_GT(matters, 1e-4) << "the normal weight must change the image here";
 }

@@ -10,6 +10,14 @@ bool has_nan(const Image& img) {
     return std::any_of(img.pixels.begin(), img.pixels.end(), [](float v) { return std::isnan(v); });
 }
 
+float max_abs_difference(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height || a.channels != b.channels)
+        throw std::invalid_argument("max_abs_difference: images of different shapes");
+    float m = 0.0f;
+    for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
+    return m;
+}
+
 double mean_luminance(const Image& img, PixelRect r) {
     const int x1 = r.w > 0 ? r.x + r.w : img.width, y1 = r.h > 0 ? r.y + r.h : img.height;
     if (r.x < 0 || r.y < 0 || x1 > img.width || y1 > img.height || x1 <= r.x || y1 <= r.y)

@@ -17,6 +17,8 @@ struct PixelRect {
 };
 
 bool has_nan(const Image& img);
+// Largest |a - b| over every channel of every pixel (same size and channels; throws otherwise).
+float max_abs_difference(const Image& a, const Image& b);
 // Rec. 709 luminance of RGB (channel 0 for grey images), averaged over the rect.
 double mean_luminance(const Image& img, PixelRect rect = {});
 // Pixels whose every channel is within tol of the colour's matching component.
