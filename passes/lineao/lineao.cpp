@@ -171,7 +171,8 @@ pathlet::PassTypeInfo lineao_type() {
     return pathlet::PassTypeBuilder("lineao",
                                     "LineAO (Eichelbaum et al. 2013): multi-radius screen-space ambient occlusion "
                                     "for dense lines; 1 = unoccluded")
-        .param_int("samples", 32, 1, 128, "s_h: samples of level 0; level l takes s_h/(l+1)")
+        .param_int("samples", 16, 1, 128,
+                   "s_h: samples of level 0; level l takes s_h/(l+1) (16: 29 in all; the study used 32, 58 in all)")
         .param_int("radii", 3, 1, kMaxLevels, "s_r: number of radii (hemispheres / pyramid levels)")
         .param_float("r0", 2.0, 0.0, 100.0, "first sampling radius in pixels (about the line width on screen)")
         .param_float("line_width", 0.0, 0.0, 1e6,
