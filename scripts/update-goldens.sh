@@ -12,10 +12,10 @@ export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe MESA_SHADER_CACHE_DISABLE
 for t in build/bin/test_*; do
   "$t" --gtest_filter="$FILTER" --gtest_brief=1 >/dev/null 2>&1 || true
 done
-changed=$(git status --porcelain -- 'tests/*/goldens/*' | awk '{print $2}')
+changed=$(git status --porcelain -- '*/goldens/*' | awk '{print $2}')
 if [ -z "$changed" ]; then
   echo "update-goldens: no golden changed"
 else
-  echo "update-goldens: changed (look at each, e.g. with the diff images in build/tests/*/golden_failures/):"
+  echo "update-goldens: changed (look at each, e.g. with the diff images in build/**/golden_failures/):"
   echo "$changed" | sed 's/^/  /'
 fi

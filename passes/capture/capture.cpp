@@ -3,20 +3,12 @@
 // writing intermediate results from inside a pipeline.
 #include <pathlet/plugin.hpp>
 
-#include "image_io.hpp"
-
-#include <string>
-
 namespace {
 
 class Capture : public pathlet::Pass {
 public:
     void execute(pathlet::PassContext& ctx) override {
-        pathlet::Texture t = ctx.texture("src");
-        pathlet::Image img = pathlet::read_texture(t.id, t.width, t.height, 0, 4);
-        std::string file = pathlet::expand_pattern(ctx.params().s("path"), {{"pass", ctx.pass_name()}}, ctx.frame_index());
-        pathlet::ensure_parent_dir(file);
-        pathlet::write_image(file, img);
+        ctx.write_image("src", ctx.params().s("path"));
     }
 };
 

@@ -2,7 +2,7 @@
 // fill_list's fragment stage: every fragment of a pathlet quad becomes a node of its pixel's
 // linked list (seed §III.b: take a node index from the counter, swap it into the head, link
 // the old head), with its colour (speed map, colour hook, halo), its opacity faded at both
-// ends of the pathlet (shaders/line_fade.glsl) and by its edge coverage, its linear depth and
+// ends of the pathlet (engine/lines/shaders/line_fade.glsl) and by its edge coverage, its linear depth and
 // its line id.
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"

@@ -1,0 +1,394 @@
+#include "executor.hpp"
+
+#include "formats.hpp"
+#include "gl_context.hpp"
+#include "image_io.hpp"
+#include "plugin_host.hpp"
+#include "profiler/profiler.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace pathlet {
+
+// What PassContext forwards to: one per pass instance.
+struct PassContextImpl {
+    Executor* exec = nullptr;
+    int index = 0;
+    Params params;
+    std::vector<std::string> shader_dirs;
+    std::map<std::string, std::unique_ptr<ShaderProgram>> programs;
+
+    const CompiledPass& pass() const { return exec->cg_.passes[size_t(index)]; }
+    const Binding* binding(const std::string& pin) const {
+        const auto& b = pass().bindings;
+        auto it = b.find(pin);
+        return it == b.end() || it->second.resource < 0 ? nullptr : &it->second;
+    }
+    [[noreturn]] void unbound(const std::string& pin, const char* what) const {
+        throw PassError("pass '" + pass().name + "' (" + pass().type->type + ") asked for " + what + " pin '" + pin +
+                        "', which is not connected" +
+                        (pass().type->pin(pin) ? "" : " (the pass type declares no such pin)"));
+    }
+};
+
+// ---- PassContext (the pass's view) -------------------------------------------------------
+
+const std::string& PassContext::pass_name() const { return impl_->pass().name; }
+const Params& PassContext::params() const { return impl_->params; }
+glm::ivec2 PassContext::output_size() const { return impl_->exec->cg_.output_size; }
+float PassContext::pixel_scale() const { return impl_->exec->cg_.pixel_scale; }
+bool PassContext::connected(const std::string& pin) const { return impl_->binding(pin) != nullptr; }
+
+Texture PassContext::texture(const std::string& pin) const {
+    const Binding* b = impl_->binding(pin);
+    if (!b) impl_->unbound(pin, "texture");
+    const auto& ph = impl_->exec->physical(b->resource, b->previous);
+    if (!ph.tex) impl_->unbound(pin, "texture (it is bound to a buffer)");
+    return ph.tex;
+}
+
+Buffer PassContext::buffer(const std::string& pin) const {
+    const Binding* b = impl_->binding(pin);
+    if (!b) impl_->unbound(pin, "buffer");
+    const auto& ph = impl_->exec->physical(b->resource, b->previous);
+    if (!ph.buf) impl_->unbound(pin, "buffer (it is bound to a texture)");
+    return ph.buf;
+}
+
+Buffer PassContext::grow_buffer(const std::string& pin, size_t bytes) {
+    const Binding* b = impl_->binding(pin);
+    if (!b) impl_->unbound(pin, "buffer");
+    if (b->previous) throw PassError("pass '" + impl_->pass().name + "' cannot grow last frame's '" + pin + "'");
+    auto& ph = const_cast<Executor::Physical&>(impl_->exec->physical(b->resource, false));
+    if (!ph.buf) impl_->unbound(pin, "buffer (it is bound to a texture)");
+    if (ph.buf.bytes >= bytes) return ph.buf;
+    // A new, larger store: GL buffer storage is immutable. The content is not kept (a pass
+    // grows a buffer it is about to refill); every pass that reads it sees the new one.
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    std::string label = impl_->exec->cg_.resources[size_t(b->resource)].name + " (grown)";
+    glObjectLabel(GL_BUFFER, id, -1, label.c_str());
+    glDeleteBuffers(1, &ph.buf.id);
+    ph.buf = {id, bytes};
+    return ph.buf;
+}
+
+const GpuScene& PassContext::scene() const { return impl_->exec->scene_; }
+
+ShaderProgram& PassContext::program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
+    std::string key;
+    for (const auto& f : files) key += f + "|";
+    key += "#";
+    for (const auto& d : defines) key += d + "|";
+    auto& slot = impl_->programs[key];
+    if (!slot) slot = std::make_unique<ShaderProgram>(ShaderProgram::from_files(files, impl_->shader_dirs, defines));
+    return *slot;
+}
+
+void PassContext::bind_framebuffer(const std::vector<std::string>& color_pins, const std::string& depth_pin, int mip) {
+    std::vector<GLuint> color;
+    int w = 0, h = 0;
+    auto take_size = [&](const Texture& t) {
+        w = std::max(1, t.width >> mip);
+        h = std::max(1, t.height >> mip);
+    };
+    for (const auto& p : color_pins) {
+        Texture t = texture(p);
+        color.push_back(t.id);
+        take_size(t);
+    }
+    GLuint depth = 0;
+    if (!depth_pin.empty()) {
+        Texture t = texture(depth_pin);
+        depth = t.id;
+        take_size(t);
+    }
+    GLuint fbo = impl_->exec->framebuffer(color, depth, mip, impl_->pass().name);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+}
+
+std::string PassContext::write_image(const std::string& pin, const std::string& pattern) {
+    Texture t = texture(pin);
+    Image img = read_texture(t.id, t.width, t.height, 0, 4);
+    std::string file = expand_pattern(pattern, {{"pass", pass_name()}}, frame_index());
+    ensure_parent_dir(file);
+    pathlet::write_image(file, img);
+    return file;
+}
+
+uint64_t PassContext::frame_index() const { return impl_->exec->frame_.index; }
+double PassContext::time() const { return impl_->exec->frame_.time; }
+const Camera& PassContext::camera() const { return impl_->exec->frame_.camera; }
+
+void PassContext::stat(const std::string& name, double value) {
+    if (impl_->exec->profiler_) impl_->exec->profiler_->add_stat(impl_->pass().name, name, value);
+}
+
+void PassContext::draw_fullscreen() {
+    glBindVertexArray(impl_->exec->empty_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
+void PassContext::draw_fullscreen_on_geometry(ShaderProgram& prog) {
+    prog.use();
+    prog.set("u_fullscreen_z", 1.0f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);  // 1.0 > stored depth: geometry only
+    glDepthMask(GL_FALSE);    // the depth texture stays read-only
+    draw_fullscreen();
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    prog.set("u_fullscreen_z", 0.0f);
+}
+
+// ---- Executor -----------------------------------------------------------------------------
+
+Executor::Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene, Profiler* profiler)
+    : gl_(gl), cg_(cg), scene_(scene), profiler_(profiler) {}
+
+Executor::~Executor() {
+    passes_.clear();  // pass destructors may delete their own GL objects
+    contexts_.clear();
+    for (auto& [k, fbo] : fbos_) glDeleteFramebuffers(1, &fbo);
+    auto free_phys = [](Physical& p) {
+        if (p.tex.id) glDeleteTextures(1, &p.tex.id);
+        if (p.buf.id) glDeleteBuffers(1, &p.buf.id);
+    };
+    for (auto& p : slots_) free_phys(p);
+    for (auto& [r, p] : history_prev_) free_phys(p);
+    if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+}
+
+std::vector<std::string> Executor::shader_dirs_for(const PassTypeInfo& type) const {
+    std::vector<std::string> dirs;
+    if (const char* env = std::getenv("PATHLET_SHADER_PATH")) {
+        std::stringstream s(env);
+        std::string d;
+        while (std::getline(s, d, ':'))
+            if (!d.empty()) dirs.push_back(d);
+    }
+    if (!type.plugin_file.empty()) {
+        fs::path so(type.plugin_file);
+        dirs.push_back((so.parent_path() / so.stem()).string());  // <plugin dir>/<plugin>/ (installed shaders)
+    }
+    dirs.push_back((fs::path(engine_share_dir()) / "shaders").string());
+    return dirs;
+}
+
+Executor::Physical Executor::make_physical(const PoolSlot& s, const std::string& full_label) {
+    Physical p;
+    // GL_MAX_LABEL_LENGTH is 256 on Mesa; long pooled labels ("a+b+c...") are cut.
+    std::string label = full_label.size() > 200 ? full_label.substr(0, 197) + "..." : full_label;
+    if (s.kind == PinKind::Texture) {
+        const FormatInfo* fi = find_format(s.internal_format);
+        glCreateTextures(GL_TEXTURE_2D, 1, &p.tex.id);
+        glTextureStorage2D(p.tex.id, std::max(1, s.mips), s.internal_format, s.width, s.height);
+        bool filterable = fi && !fi->is_integer && !fi->depth;
+        GLenum min = filterable ? (s.mips > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : GL_NEAREST;
+        glTextureParameteri(p.tex.id, GL_TEXTURE_MIN_FILTER, GLint(min));
+        glTextureParameteri(p.tex.id, GL_TEXTURE_MAG_FILTER, filterable ? GL_LINEAR : GL_NEAREST);
+        glTextureParameteri(p.tex.id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(p.tex.id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glObjectLabel(GL_TEXTURE, p.tex.id, -1, label.c_str());
+        p.tex.width = s.width;
+        p.tex.height = s.height;
+        p.tex.mips = std::max(1, s.mips);
+        p.tex.internal_format = s.internal_format;
+    } else {
+        glCreateBuffers(1, &p.buf.id);
+        glNamedBufferStorage(p.buf.id, GLsizeiptr(std::max<size_t>(s.bytes, 4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glObjectLabel(GL_BUFFER, p.buf.id, -1, label.c_str());
+        p.buf.bytes = s.bytes;
+    }
+    return p;
+}
+
+const Executor::Physical& Executor::physical(int resource, bool previous) const {
+    if (previous) {
+        auto it = history_prev_.find(resource);
+        if (it != history_prev_.end()) return it->second;
+    }
+    return slots_.at(size_t(cg_.resources.at(size_t(resource)).slot));
+}
+
+GLuint Executor::framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass) {
+    std::vector<GLuint> key = color;
+    key.push_back(depth);
+    key.push_back(GLuint(mip));
+    auto it = fbos_.find(key);
+    if (it != fbos_.end()) return it->second;
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    std::vector<GLenum> draw;
+    for (size_t i = 0; i < color.size(); ++i) {
+        glNamedFramebufferTexture(fbo, GLenum(GL_COLOR_ATTACHMENT0 + i), color[i], mip);
+        draw.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+    }
+    if (depth) glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, mip);
+    if (draw.empty())
+        glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    else
+        glNamedFramebufferDrawBuffers(fbo, GLsizei(draw.size()), draw.data());
+    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        glDeleteFramebuffers(1, &fbo);
+        std::ostringstream s;
+        s << "pass '" << pass << "': framebuffer incomplete (status 0x" << std::hex << status
+          << "); check that its outputs are colour-renderable formats of one size";
+        throw PassError(s.str());
+    }
+    fbos_[key] = fbo;
+    return fbo;
+}
+
+void Executor::check_gl(const std::string& pass, const char* phase) {
+    auto errs = gl_.take_errors();
+    if (errs.empty()) return;
+    std::string msg = "pass '" + pass + "' caused OpenGL errors in " + phase + ":";
+    for (const auto& e : errs) msg += "\n  " + e;
+    throw PassError(msg);
+}
+
+void Executor::setup() {
+    gl_.take_errors();  // start clean
+    glCreateVertexArrays(1, &empty_vao_);
+    slots_.clear();
+    for (size_t i = 0; i < cg_.slots.size(); ++i) {
+        std::string label;
+        for (int r : cg_.slots[i].resources) label += (label.empty() ? "" : "+") + cg_.resources[size_t(r)].name;
+        slots_.push_back(make_physical(cg_.slots[i], label));
+    }
+    for (size_t r = 0; r < cg_.resources.size(); ++r) {
+        const auto& res = cg_.resources[r];
+        if (!res.history || res.slot < 0) continue;
+        Physical prev = make_physical(cg_.slots[size_t(res.slot)], res.name + "@prev");
+        // Frame 0 reads an empty history: zero it so it is defined.
+        if (prev.tex) {
+            // The clear's pixel format must match the texture's kind (integer formats such as r32i).
+            const FormatInfo* fi = find_format(prev.tex.internal_format);
+            const GLenum fmt = fi ? fi->pixel_format : GL_RGBA, type = fi ? fi->pixel_type : GL_FLOAT;
+            for (int m = 0; m < prev.tex.mips; ++m) glClearTexImage(prev.tex.id, m, fmt, type, nullptr);
+        } else {
+            glClearNamedBufferData(prev.buf.id, GL_R8, GL_RED, GL_UNSIGNED_BYTE, nullptr);
+        }
+        history_prev_[int(r)] = prev;
+    }
+    check_gl("(engine)", "resource creation");
+
+    passes_.clear();
+    contexts_.clear();
+    for (size_t i = 0; i < cg_.passes.size(); ++i) {
+        const CompiledPass& cp = cg_.passes[i];
+        auto impl = std::make_unique<PassContextImpl>();
+        impl->exec = this;
+        impl->index = int(i);
+        impl->params = Params(cp.name, cp.params);
+        impl->shader_dirs = shader_dirs_for(*cp.type);
+        std::unique_ptr<Pass> pass;
+        gl_.set_scope(cp.name);
+        try {
+            pass = cp.type->create();
+            if (!pass) throw PassError("its factory returned nothing");
+            PassContext ctx(impl.get());
+            pass->setup(ctx);
+        } catch (const ShaderError& e) {
+            throw PassError("pass '" + cp.name + "' (" + cp.type->type + "): " + e.what());
+        } catch (const std::exception& e) {
+            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
+        } catch (...) {
+            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") threw a non-standard exception in setup");
+        }
+        check_gl(cp.name, "setup");
+        passes_.push_back(std::move(pass));
+        contexts_.push_back(std::move(impl));
+    }
+    gl_.set_scope("");
+}
+
+void Executor::reparam(size_t i) {
+    if (i >= passes_.size()) throw PassError("reparam: no pass " + std::to_string(i));
+    const CompiledPass& cp = cg_.passes[i];
+    PassContextImpl& impl = *contexts_[i];
+    Params old = impl.params;
+    impl.params = Params(cp.name, cp.params);
+    gl_.set_scope(cp.name);
+    try {
+        PassContext ctx(&impl);
+        passes_[i]->setup(ctx);
+    } catch (const std::exception& e) {
+        impl.params = old;  // back to what worked, set up again
+        try {
+            PassContext ctx(&impl);
+            passes_[i]->setup(ctx);
+        } catch (...) {
+        }
+        gl_.set_scope("");
+        throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
+    }
+    check_gl(cp.name, "setup");
+    gl_.set_scope("");
+}
+
+void Executor::run_frame(const FrameInfo& f) {
+    frame_ = f;
+    // Debug groups cost a message round trip per pass on Mesa; only with PATHLET_GL_DEBUG.
+    static const bool groups = std::getenv("PATHLET_GL_DEBUG") != nullptr;
+    if (profiler_) profiler_->begin_frame(f.index);
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        const CompiledPass& cp = cg_.passes[i];
+        gl_.set_scope(cp.name);
+        if (groups) glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, GLuint(i), -1, cp.name.c_str());
+        if (profiler_) profiler_->begin_pass(cp.name);
+        try {
+            PassContext ctx(contexts_[i].get());
+            passes_[i]->execute(ctx);
+        } catch (const std::exception& e) {
+            if (groups) glPopDebugGroup();
+            gl_.set_scope("");
+            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in frame " +
+                            std::to_string(f.index) + ": " + e.what());
+        } catch (...) {
+            if (groups) glPopDebugGroup();
+            gl_.set_scope("");
+            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") threw a non-standard exception");
+        }
+        if (profiler_) profiler_->end_pass();
+        if (groups) glPopDebugGroup();
+        // The debug callback flags errors as they happen, so this check costs nothing when
+        // all is well; glGetError is polled once per frame below.
+        if (gl_.has_errors()) check_gl(cp.name, "execute");
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    // Errors seen only here (no debug callback) cannot be pinned to one pass.
+    check_gl("(one of this frame's passes; PATHLET_GL_DEBUG=1 narrows it down)", "execute");
+    gl_.set_scope("");
+    if (profiler_) profiler_->end_frame();
+    // History: what was written this frame becomes next frame's @prev.
+    for (auto& [r, prev] : history_prev_) std::swap(prev, slots_[size_t(cg_.resources[size_t(r)].slot)]);
+}
+
+Texture Executor::texture(const std::string& resource) const {
+    int r = cg_.find_resource(resource);
+    if (r < 0) throw PassError("no resource named '" + resource + "' in the compiled graph");
+    // After the swap, the frame's content of a history resource lives in history_prev_.
+    const Physical& p = cg_.resources[size_t(r)].history ? physical(r, true) : physical(r, false);
+    return p.tex;
+}
+
+Buffer Executor::buffer(const std::string& resource) const {
+    int r = cg_.find_resource(resource);
+    if (r < 0) throw PassError("no resource named '" + resource + "' in the compiled graph");
+    const Physical& p = cg_.resources[size_t(r)].history ? physical(r, true) : physical(r, false);
+    return p.buf;
+}
+
+}  // namespace pathlet

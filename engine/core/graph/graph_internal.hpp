@@ -1,0 +1,97 @@
+// Helpers shared by the graph steps (parse, validate, compile, reports). Private to engine/core/graph.
+#pragma once
+
+#include "../formats.hpp"
+#include "../pass_registry.hpp"
+#include "graph_model.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace pathlet::graph_detail {
+
+// ---- text -------------------------------------------------------------------------------
+std::string join(const std::vector<std::string>& v, const char* sep = ", ");
+// " (did you mean 'x'?)" or "" — appended to "unknown ..." messages.
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates,
+                         const std::string& prefix = "");
+std::string pointer_escape(const std::string& key);  // RFC 6901: "~" -> "~0", "/" -> "~1"
+std::string quoted(const std::string& s);            // 'x'
+
+// ---- references -------------------------------------------------------------------------
+// "name@prev" -> {name, prev = true}
+struct Ref {
+    std::string name;
+    bool prev = false;
+};
+Ref split_ref(const std::string& text);
+
+// One pin of a pass bound to a resource, as resolved from the file.
+struct BoundPin {
+    std::string pin;
+    const PinDecl* decl = nullptr;  // nullptr: unknown pin (already reported)
+    int resource = -1;              // -1: unresolved (already reported)
+    bool prev = false;
+    std::string pointer;            // /passes/i/inputs/pin
+};
+
+// What the file's names refer to: pass types, declared + implicit resources, pin bindings and
+// writers. Built once per validate/compile; resolution problems (unknown pass type, pin,
+// resource, pass.pin) go to the diagnostics given to build_index.
+struct GraphIndex {
+    GraphIndex() = default;
+    GraphIndex(const GraphIndex&) = delete;  // `writers` points into `outputs`
+    GraphIndex(GraphIndex&&) = default;
+
+    const GraphFile* g = nullptr;
+    const PassRegistry* reg = nullptr;
+    std::vector<const PassTypeInfo*> types;             // per pass; nullptr when the type is unknown
+    std::vector<ResourceDecl> resources;                // declared, then implicit "<pass>.<pin>"
+    std::map<std::string, int> resource_by_name;
+    std::map<std::string, int> pass_by_name;            // first pass of that name
+    std::vector<std::vector<BoundPin>> inputs, outputs; // per pass, in pin-name order
+    std::vector<std::vector<std::pair<int, const BoundPin*>>> writers;  // per resource, file order
+
+    int find_resource(const std::string& name) const;
+    // "resource" or "pass.pin" -> resource index. -1 with `err` set, or -1 with `err` empty when
+    // the problem lies elsewhere and was reported there (unknown pass type, bad output binding).
+    int resolve(const std::string& ref, std::string& err) const;
+    int writer(int r) const { return writers[r].empty() ? -1 : writers[r][0].first; }
+    const PinDecl* writer_pin(int r) const;
+    std::string resolved_format(int r) const;  // the resource's format, else its writer pin's; "" unknown
+    std::vector<std::string> resource_names() const;
+};
+GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<Diagnostic>& diags);
+
+// Per pass: the passes whose outputs it reads this frame (writers of its non-@prev inputs,
+// itself excluded), sorted, without duplicates.
+std::vector<std::vector<int>> pass_dependencies(const GraphIndex& idx);
+
+// The checks of validate_graph over a built index.
+void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags);
+
+// ---- values -----------------------------------------------------------------------------
+const VariableDecl* find_variable(const GraphFile& g, const std::string& name);
+std::vector<std::string> variable_names(const GraphFile& g);
+bool is_variable_ref(const json& v);  // "$name"
+// A parameter value as written (literal or "$var") -> coerced value; returns an error or "".
+std::string resolve_param(const GraphFile& g, const ParamDecl& d, const json& written, json& out);
+// `enabled` (bool or "$var" naming a bool variable) -> bool; returns an error or "".
+std::string resolve_enabled(const GraphFile& g, const json& enabled, bool& out);
+
+// ---- sizes and memory -------------------------------------------------------------------
+// Texture size of resource r for the given output size, following relative_to chains
+// (rounding up, at least 1). Returns an error (unknown/cyclic/buffer base) or ""; `at` gets
+// the resource whose size declaration holds the problem.
+std::string resolve_size(const GraphIndex& idx, int r, glm::ivec2 output, glm::ivec2& out, int* at = nullptr);
+int full_mip_count(int w, int h);
+size_t texture_bytes(const FormatInfo& f, int w, int h, int mips);
+// Memory the executor allocates for a resource: history keeps two copies.
+size_t allocated_bytes(const CompiledResource& r);
+
+// ---- pooling (graph_pool.cpp) -------------------------------------------------------------
+// Assigns CompiledResource::slot and fills CompiledGraph::slots and the memory totals.
+void assign_slots(CompiledGraph& cg);
+
+}  // namespace pathlet::graph_detail

@@ -1,0 +1,219 @@
+// The pass contract. A pass type declares its parameters and pins ONCE (PassTypeBuilder);
+// that declaration drives graph validation, `--set` overrides, `pathlet passes --describe`
+// and the docs. The instance then implements setup() (shaders, GL objects) and execute().
+#pragma once
+
+#include <pathlet/gl.hpp>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pathlet {
+
+using json = nlohmann::json;
+
+// ---- declarations ---------------------------------------------------------------------
+
+enum class ParamType { Bool, Int, Float, String, Enum, Vec3, Color };
+const char* to_string(ParamType t);
+
+struct ParamDecl {
+    std::string name;
+    ParamType type = ParamType::Float;
+    json def;                                        // default value, of the declared type
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+    std::vector<std::string> choices;                // Enum only
+    std::string doc;
+
+    // Checks and converts a JSON value (ints accepted for floats, "#rrggbb" for colours).
+    // Returns an error message, or "" and sets `out`.
+    std::string coerce(const json& in, json& out) const;
+    // Parses a command-line string ("0.5", "true", "[1,0,0]", "#ff0000", "linear").
+    std::string coerce_text(const std::string& text, json& out) const;
+};
+
+enum class PinKind { Texture, Buffer };
+enum class PinDir { Input, Output };
+
+struct PinDecl {
+    std::string name;
+    PinDir dir = PinDir::Input;
+    PinKind kind = PinKind::Texture;
+    std::string format = "any";  // texture format name (see formats.hpp), or "any" for inputs
+    int mips = 1;                // outputs: mip levels; 0 = full chain
+    float scale = 1.0f;          // outputs: default size = scale x output size
+    size_t bytes = 0;            // buffer outputs: fixed size, or ...
+    size_t bytes_per_pixel = 0;  // ... size proportional to the output's pixel count
+    bool optional = false;       // may stay unconnected; an unconnected optional output gets no
+                                 // resource (connected() is false), a required one an implicit one
+    std::string doc;
+};
+
+class Pass;
+struct PassTypeInfo {
+    std::string type;
+    std::string doc;
+    std::vector<ParamDecl> params;
+    std::vector<PinDecl> pins;
+    std::function<std::unique_ptr<Pass>()> create;
+    std::string plugin_file;  // filled in by the plugin host
+    bool side_effect = false; // never culled even without connected outputs (capture, stats)
+
+    const ParamDecl* param(const std::string& name) const;
+    const PinDecl* pin(const std::string& name) const;
+    json default_params() const;
+    std::string describe() const;  // the text of `pathlet passes --describe TYPE`
+    std::string markdown() const;  // parameter and pin tables for the pass README (`--markdown`)
+};
+
+// Fluent builder: the single place a pass type states what it is.
+class PassTypeBuilder {
+public:
+    PassTypeBuilder(std::string type, std::string doc);
+
+    PassTypeBuilder& param_bool(const std::string& name, bool def, const std::string& doc);
+    PassTypeBuilder& param_int(const std::string& name, int def, int min, int max, const std::string& doc);
+    PassTypeBuilder& param_float(const std::string& name, double def, double min, double max, const std::string& doc);
+    PassTypeBuilder& param_enum(const std::string& name, const std::string& def, std::vector<std::string> choices,
+                                const std::string& doc);
+    PassTypeBuilder& param_string(const std::string& name, const std::string& def, const std::string& doc);
+    PassTypeBuilder& param_vec3(const std::string& name, glm::vec3 def, const std::string& doc);
+    PassTypeBuilder& param_color(const std::string& name, glm::vec3 def, const std::string& doc);
+
+    PassTypeBuilder& input_texture(const std::string& name, const std::string& format, const std::string& doc,
+                                   bool optional = false);
+    PassTypeBuilder& output_texture(const std::string& name, const std::string& format, const std::string& doc,
+                                    int mips = 1, float scale = 1.0f, bool optional = false);
+    PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, bool optional = false);
+    PassTypeBuilder& output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
+                                   const std::string& doc);
+
+    // The pass does work outside the graph (writes files): the compiler never culls it.
+    PassTypeBuilder& side_effect() {
+        info_.side_effect = true;
+        return *this;
+    }
+
+    template <class P>
+    PassTypeInfo make() {
+        info_.create = [] { return std::unique_ptr<Pass>(new P()); };
+        return info_;
+    }
+
+private:
+    PassTypeInfo info_;
+};
+
+// ---- run time -------------------------------------------------------------------------
+
+// Resolved parameter values of one pass instance (defaults + graph + variables + --set).
+class Params {
+public:
+    Params() = default;
+    Params(std::string pass, json values) : pass_(std::move(pass)), v_(std::move(values)) {}
+    bool b(const std::string& n) const;
+    int i(const std::string& n) const;
+    float f(const std::string& n) const;
+    std::string s(const std::string& n) const;
+    glm::vec3 v3(const std::string& n) const;
+    const json& raw() const { return v_; }
+
+private:
+    const json& at(const std::string& n) const;
+    std::string pass_;
+    json v_;
+};
+
+struct Texture {
+    GLuint id = 0;
+    int width = 0, height = 0, mips = 1;
+    GLenum internal_format = 0;
+    explicit operator bool() const { return id != 0; }
+};
+
+struct Buffer {
+    GLuint id = 0;
+    size_t bytes = 0;
+    explicit operator bool() const { return id != 0; }
+};
+
+struct Camera {
+    glm::mat4 view{1.0f}, proj{1.0f};
+    glm::vec3 eye{0, 0, 1}, target{0}, up{0, 1, 0};
+    float fov_y_deg = 45.0f, near_plane = 0.1f, far_plane = 100.0f;
+};
+
+class GpuScene;
+class ShaderProgram;
+struct PassContextImpl;
+
+// What a pass sees, in setup() and in execute(). Implemented by the executor.
+class PassContext {
+public:
+    explicit PassContext(PassContextImpl* impl) : impl_(impl) {}
+
+    const std::string& pass_name() const;
+    const Params& params() const;
+    glm::ivec2 output_size() const;
+    // Render pixels per picture pixel (1; N under `render --ssaa N`). Multiply parameters given
+    // in pixels (radii, widths, tolerances) by it so a supersampled frame looks the same.
+    float pixel_scale() const;
+
+    bool connected(const std::string& pin) const;   // optional inputs may be unconnected
+    Texture texture(const std::string& pin) const;  // throws naming the pass and pin when unbound
+    Buffer buffer(const std::string& pin) const;
+    // Makes the buffer bound to an output pin at least `bytes` large (a new store, content not
+    // kept), for passes whose need is known only at run time (e.g. OIT node storage). Throws
+    // GL out-of-memory as a PassError like any GL error.
+    Buffer grow_buffer(const std::string& pin, size_t bytes);
+
+    const GpuScene& scene() const;
+    // Compiles (once, cached) a program from shader files found on the shader search path
+    // (the pass's own folder first). Compile errors throw and name the file and line.
+    ShaderProgram& program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+
+    // Binds a framebuffer whose colour attachments are the given output pins (in order, as
+    // locations 0..n-1) and optional depth pin, and sets the viewport to their size.
+    void bind_framebuffer(const std::vector<std::string>& color_pins, const std::string& depth_pin = "",
+                          int mip = 0);
+
+    // Writes the texture bound to `pin` to an image file (the extension picks the format: PNG,
+    // EXR keeps floats), under a temporary name and then renamed; `pattern` may hold {pass} and
+    // {frame:05}. Returns the file written.
+    std::string write_image(const std::string& pin, const std::string& pattern);
+
+    // Per-frame facts (valid in execute()).
+    uint64_t frame_index() const;
+    double time() const;        // animation time in seconds
+    const Camera& camera() const;
+    // Statistics reported with the timing table (e.g. "segments drawn").
+    void stat(const std::string& name, double value);
+    // A full-screen triangle: bind a program first; vertex shader from shaders/fullscreen.vert.
+    void draw_fullscreen();
+    // The same, but only where the bound framebuffer's depth attachment (a G-buffer depth)
+    // is < 1, i.e. on geometry: the early depth test skips background pixels, which on
+    // llvmpipe skips whole empty tiles. `prog` must use fullscreen.vert. Leaves depth state off.
+    void draw_fullscreen_on_geometry(ShaderProgram& prog);
+
+protected:
+    PassContextImpl* impl_;
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+    // Once, with the GL context current, after resources exist (and again after a resize
+    // or parameter change). Compile programs and create pass-private GL objects here.
+    virtual void setup(PassContext& ctx) {}
+    // Every frame.
+    virtual void execute(PassContext& ctx) = 0;
+};
+
+}  // namespace pathlet

@@ -1,0 +1,49 @@
+# pathlet_add_test(name SOURCES a.cpp b.cpp [LIBS x y] [LABELS gl])
+#
+# A GoogleTest executable registered with ctest. A test labelled `gl` depends on
+# pathlet_runtime: every built-in pass plugin, its shaders, the shared shaders and graphs and
+# the `pathlet` command. So a test never runs against a stale plugin or shader, and no test
+# lists its dependencies by hand. LIBS: pathlet::internal for the engine with its internals,
+# pathlet_data for the CPU-only data code.
+# PATHLET_TEST_SOURCE_DIR is the folder of the first source (goldens/ and fixtures beside it).
+# Included by the top-level CMakeLists before passes/, so a pass folder can hold its own tests
+# (pathlet_add_pass(... TESTS ...)).
+find_package(GTest REQUIRED)
+include(GoogleTest)
+
+# Real third-party data lives beside the checkout (never copied into the repo).
+set(PATHLET_REAL_DATA_DIR "${PROJECT_SOURCE_DIR}/../shared/data/real" CACHE PATH "shared/data/real")
+# Every GL test runs on Mesa's llvmpipe, pinned, with a hermetic shader cache.
+# PATHLET_UPDATE_GOLDENS is never inherited from the caller: goldens change only through
+# scripts/update-goldens.sh.
+set(PATHLET_TEST_ENV "PATHLET_UPDATE_GOLDENS=0"
+  "LIBGL_ALWAYS_SOFTWARE=1" "GALLIUM_DRIVER=llvmpipe" "MESA_SHADER_CACHE_DISABLE=true"
+  "PATHLET_REAL_DATA_DIR=${PATHLET_REAL_DATA_DIR}" "PATHLET_PLUGIN_PATH=" "DISPLAY=" "WAYLAND_DISPLAY=")
+
+if(NOT TARGET pathlet_runtime)
+  add_custom_target(pathlet_runtime)
+endif()
+
+function(pathlet_add_test name)
+  cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  list(GET T_SOURCES 0 first)
+  get_filename_component(first "${first}" ABSOLUTE)
+  get_filename_component(source_dir "${first}" DIRECTORY)
+  target_compile_definitions(${name} PRIVATE
+    PATHLET_TEST_SOURCE_DIR="${source_dir}"
+    PATHLET_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
+    PATHLET_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PATHLET_BUILD_DIR="${PROJECT_BINARY_DIR}"
+    PATHLET_CLI="${PROJECT_BINARY_DIR}/bin/pathlet")
+  if("gl" IN_LIST T_LABELS)
+    add_dependencies(${name} pathlet_runtime)
+  endif()
+  # The environment goes through `env` as the test's launcher: gtest_discover_tests passes
+  # PROPERTIES as name/value pairs, so a list-valued ENVIRONMENT set only its first variable
+  # and shifted the rest into bogus properties. `env` sets every one, for discovery and runs.
+  set_target_properties(${name} PROPERTIES CROSSCOMPILING_EMULATOR "env;${PATHLET_TEST_ENV}")
+  gtest_discover_tests(${name} PROPERTIES LABELS "${T_LABELS}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
