@@ -9,8 +9,10 @@
 #ifndef PATHLET_OIT_LIST_GLSL
 #define PATHLET_OIT_LIST_GLSL
 
-#define OIT_END 0xFFFFFFFFu
-#define OIT_COUNTER_BINDING 8
+// OIT_END and OIT_COUNTER_BINDING come from C++ (pathlet::oit::defines(), pathlet/oit.hpp).
+#if !defined(OIT_END) || !defined(OIT_COUNTER_BINDING)
+#error "oit_list.glsl: make the program with pathlet::oit::defines()"
+#endif
 
 uvec4 oit_pack(vec4 rgba, float depth01, uint next, int line_id) {
     return uvec4(packUnorm4x8(clamp(rgba, 0.0, 1.0)), floatBitsToUint(depth01), next, uint(line_id));

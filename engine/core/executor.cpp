@@ -6,8 +6,10 @@
 #include "plugin_host.hpp"
 #include "profiler/profiler.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -21,6 +23,10 @@ struct PassContextImpl {
     Params params;
     std::vector<std::string> shader_dirs;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs;
+    // Binding by declaration: texture pin -> unit (declaration order), and the pins some program
+    // of the pass reads as u_<pin> (bound before each execute()).
+    std::map<std::string, int> pin_unit;
+    std::set<std::string> sampled_pins, image_pins;
 
     const CompiledPass& pass() const { return exec->cg_.passes[size_t(index)]; }
     const Binding* binding(const std::string& pin) const {
@@ -86,8 +92,86 @@ ShaderProgram& PassContext::program(const std::vector<std::string>& files, const
     key += "#";
     for (const auto& d : defines) key += d + "|";
     auto& slot = impl_->programs[key];
-    if (!slot) slot = std::make_unique<ShaderProgram>(ShaderProgram::from_files(files, impl_->shader_dirs, defines));
+    if (!slot) {
+        auto prog = std::make_unique<ShaderProgram>(ShaderProgram::from_files(files, impl_->shader_dirs, defines));
+        // u_<pin> takes the pin's unit; other samplers and images the units after the pins.
+        int next = int(impl_->pin_unit.size());
+        for (const auto& u : std::vector<ShaderProgram::Uniform>(prog->uniforms())) {
+            if (!u.opaque) continue;
+            auto it = u.name.rfind("u_", 0) == 0 ? impl_->pin_unit.find(u.name.substr(2)) : impl_->pin_unit.end();
+            if (it != impl_->pin_unit.end()) {
+                prog->set_unit(u.name, it->second);
+                (u.image ? impl_->image_pins : impl_->sampled_pins).insert(it->first);
+            } else {
+                prog->set_unit(u.name, next++);
+            }
+        }
+        bind_params(*prog);
+        slot = std::move(prog);
+    }
     return *slot;
+}
+
+namespace {
+const char* glsl_type_name(GLenum t) {
+    switch (t) {
+        case GL_FLOAT: return "float";
+        case GL_FLOAT_VEC2: return "vec2";
+        case GL_FLOAT_VEC3: return "vec3";
+        case GL_FLOAT_VEC4: return "vec4";
+        case GL_INT: return "int";
+        case GL_INT_VEC2: return "ivec2";
+        case GL_UNSIGNED_INT: return "uint";
+        case GL_BOOL: return "bool";
+        case GL_FLOAT_MAT4: return "mat4";
+        default: return "another type";
+    }
+}
+}  // namespace
+
+void PassContext::bind_params(const ShaderProgram& prog) const {
+    const PassTypeInfo* type = impl_->pass().type;
+    const float scale = pixel_scale();
+    for (const ParamDecl& d : type->params) {
+        if (d.type == ParamType::String) continue;
+        const ShaderProgram::Uniform* u = prog.uniform("u_" + d.name);
+        if (!u || u->opaque) continue;
+        const json& v = impl_->params.raw().at(d.name);
+        const GLuint id = prog.id();
+        bool fits = true;
+        switch (d.type) {
+            case ParamType::Bool:
+                fits = u->type == GL_BOOL || u->type == GL_INT;
+                if (fits) glProgramUniform1i(id, u->location, v.get<bool>() ? 1 : 0);
+                break;
+            case ParamType::Int: {
+                const double x = v.get<double>() * (d.pixels ? scale : 1.0f);
+                if (u->type == GL_INT || u->type == GL_BOOL) glProgramUniform1i(id, u->location, int(std::lround(x)));
+                else if (u->type == GL_UNSIGNED_INT) glProgramUniform1ui(id, u->location, GLuint(std::llround(std::max(x, 0.0))));
+                else if (u->type == GL_FLOAT) glProgramUniform1f(id, u->location, float(x));
+                else fits = false;
+                break;
+            }
+            case ParamType::Float:
+                fits = u->type == GL_FLOAT;
+                if (fits) glProgramUniform1f(id, u->location, float(v.get<double>() * (d.pixels ? scale : 1.0f)));
+                break;
+            case ParamType::Enum:
+                fits = u->type == GL_INT;
+                if (fits) glProgramUniform1i(id, u->location, impl_->params.index(d.name));
+                break;
+            case ParamType::Vec3:
+            case ParamType::Color:
+                fits = u->type == GL_FLOAT_VEC3;
+                if (fits) glProgramUniform3f(id, u->location, v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
+                break;
+            case ParamType::String: break;
+        }
+        if (!fits)
+            throw ShaderError("uniform 'u_" + d.name + "' is " + glsl_type_name(u->type) + " in the program, but parameter '" +
+                              d.name + "' is " + to_string(d.type) +
+                              " (declared parameters reach u_<name>: rename the uniform or fix its type)");
+    }
 }
 
 void PassContext::bind_framebuffer(const std::vector<std::string>& color_pins, const std::string& depth_pin, int mip) {
@@ -290,14 +374,17 @@ void Executor::setup() {
         auto impl = std::make_unique<PassContextImpl>();
         impl->exec = this;
         impl->index = int(i);
-        impl->params = Params(cp.name, cp.params);
+        impl->params = Params(cp.name, cp.params, cp.type);
         impl->shader_dirs = shader_dirs_for(*cp.type);
+        for (const PinDecl& pin : cp.type->pins)
+            if (pin.kind == PinKind::Texture) impl->pin_unit.emplace(pin.name, int(impl->pin_unit.size()));
         std::unique_ptr<Pass> pass;
         gl_.set_scope(cp.name);
         try {
             pass = cp.type->create();
             if (!pass) throw PassError("its factory returned nothing");
             PassContext ctx(impl.get());
+            reset_gl_state();
             pass->setup(ctx);
         } catch (const ShaderError& e) {
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + "): " + e.what());
@@ -318,16 +405,21 @@ void Executor::reparam(size_t i) {
     const CompiledPass& cp = cg_.passes[i];
     PassContextImpl& impl = *contexts_[i];
     Params old = impl.params;
-    impl.params = Params(cp.name, cp.params);
+    impl.params = Params(cp.name, cp.params, cp.type);
     gl_.set_scope(cp.name);
-    try {
+    // The programs the pass has get the new parameters first; setup() then sets what it derives.
+    auto set_up = [&] {
         PassContext ctx(&impl);
+        for (const auto& [key, prog] : impl.programs) ctx.bind_params(*prog);
+        reset_gl_state();
         passes_[i]->setup(ctx);
+    };
+    try {
+        set_up();
     } catch (const std::exception& e) {
         impl.params = old;  // back to what worked, set up again
         try {
-            PassContext ctx(&impl);
-            passes_[i]->setup(ctx);
+            set_up();
         } catch (...) {
         }
         gl_.set_scope("");
@@ -349,6 +441,8 @@ void Executor::run_frame(const FrameInfo& f) {
         if (profiler_) profiler_->begin_pass(cp.name);
         try {
             PassContext ctx(contexts_[i].get());
+            reset_gl_state();
+            bind_pins(*contexts_[i]);
             passes_[i]->execute(ctx);
         } catch (const std::exception& e) {
             if (groups) glPopDebugGroup();
@@ -374,6 +468,39 @@ void Executor::run_frame(const FrameInfo& f) {
     if (profiler_) profiler_->end_frame();
     // History: what was written this frame becomes next frame's @prev.
     for (auto& [r, prev] : history_prev_) std::swap(prev, slots_[size_t(cg_.resources[size_t(r)].slot)]);
+}
+
+// The documented state every pass starts from (pass.hpp): whatever the previous pass changed.
+void Executor::reset_gl_state() {
+    glUseProgram(0);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, cg_.output_size.x, cg_.output_size.y);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glBindTextures(0, 16, nullptr);  // one call: whatever units the last pass used
+    glBindImageTextures(0, 8, nullptr);
+}
+
+// Texture pins that a program of the pass reads as u_<pin>, on the pin's unit.
+void Executor::bind_pins(const PassContextImpl& impl) {
+    PassContext ctx(const_cast<PassContextImpl*>(&impl));
+    for (const std::string& pin : impl.sampled_pins) {
+        const int unit = impl.pin_unit.at(pin);
+        glBindTextureUnit(GLuint(unit), ctx.connected(pin) ? ctx.texture(pin).id : 0);
+    }
+    for (const std::string& pin : impl.image_pins)
+        if (ctx.connected(pin)) {
+            const Texture t = ctx.texture(pin);
+            glBindImageTexture(GLuint(impl.pin_unit.at(pin)), t.id, 0, GL_FALSE, 0, GL_READ_WRITE, t.internal_format);
+        }
 }
 
 Texture Executor::texture(const std::string& resource) const {

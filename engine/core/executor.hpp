@@ -62,6 +62,8 @@ private:
     const Physical& physical(int resource, bool previous) const;
     GLuint framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass);
     void check_gl(const std::string& pass, const char* phase);
+    void reset_gl_state();
+    void bind_pins(const PassContextImpl& impl);
 
     GlContext& gl_;
     const CompiledGraph& cg_;

@@ -11,8 +11,7 @@
 #include <vector>
 
 namespace {
-
-const std::vector<std::string> kModes{"backfaces", "whole"};
+enum class Mode { backfaces, whole };  // the choices of `mode`
 
 class AortaBackface : public pathlet::Pass {
 public:
@@ -40,16 +39,13 @@ public:
         if (!p.b("show") || !scene.has_mesh()) return;
         ctx.bind_framebuffer({"final"}, "depth");
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
         glDepthMask(GL_FALSE);  // the G-buffer depth stays as it is
         // Back faces only: let the rasteriser cull the near side (half the wall's pixels and
         // setup) when the winding is consistent; the shader's normal test stays as a fallback.
-        if (p.s("mode") == "backfaces") {
+        if (p.e<Mode>("mode") == Mode::backfaces) {
             glEnable(GL_CULL_FACE);
             glFrontFace(GL_CCW);
             glCullFace(ccw_outward_ ? GL_FRONT : GL_BACK);
-        } else {
-            glDisable(GL_CULL_FACE);
         }
         glEnable(GL_BLEND);
         // Colour: opacity over what is there; alpha: 1 where the wall is (the background's alpha
@@ -59,16 +55,9 @@ public:
         prog_->use();
         prog_->set("u_view", ctx.camera().view);
         prog_->set("u_proj", ctx.camera().proj);
-        prog_->set("u_color", p.v3("wall_color"));
-        prog_->set("u_backfaces_only", p.s("mode") == "backfaces" ? 1 : 0);
         prog_->set("u_normal_sign", normal_sign_);
         glBindVertexArray(wall_.vao());
         glDrawElements(GL_TRIANGLES, wall_.index_count(), GL_UNSIGNED_INT, nullptr);
-        glBindVertexArray(0);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_DEPTH_TEST);
         ctx.stat("wall triangles", double(wall_.index_count() / 3));
     }
 
@@ -104,7 +93,7 @@ PATHLET_PLUGIN("aorta_backface", {
                                        "the vessel wall as quiet, lit context behind the lines, over the finished image "
                                        "(never in LineAO)")
                   .param_bool("show", true, "draw the wall (false: the image passes through unchanged)")
-                  .param_enum("mode", "backfaces", kModes,
+                  .param_enum("mode", "backfaces", {"backfaces", "whole"},
                               "backfaces: the far side of the vessel, seen through it (the study); whole: every face")
                   .param_color("wall_color", {0.55f, 0.62f, 0.72f}, "wall colour before shading")
                   .param_float("opacity", 0.3, 0.0, 1.0, "how strongly the wall covers the background")

@@ -5,15 +5,15 @@
 // line (the study's Fig. 11c).
 in vec3 v_normal;
 in vec3 v_pos;
-uniform vec3 u_color;
-uniform int u_backfaces_only;
+uniform vec3 u_wall_color;  // the pass's parameters, by declaration
+uniform int u_mode;         // 0: backfaces, 1: whole
 uniform float u_normal_sign;  // +1: the mesh's normals point outward, -1: inward
 layout(location = 0) out vec4 o_color;
 void main() {
     vec3 n = u_normal_sign * normalize(v_normal);
     vec3 to_eye = normalize(-v_pos);
     float facing = dot(n, to_eye);  // > 0: the side towards the viewer (outward normals)
-    if (u_backfaces_only != 0 && facing > 0.0) discard;
+    if (u_mode == 0 && facing > 0.0) discard;
     float shade = 0.55 + 0.45 * abs(facing);
-    o_color = vec4(u_color * shade, 1.0);  // blended at the pass's opacity (a blend constant)
+    o_color = vec4(u_wall_color * shade, 1.0);  // blended at the pass's opacity (a blend constant)
 }

@@ -29,26 +29,16 @@ public:
     void execute(pathlet::PassContext& ctx) override {
         const auto& p = ctx.params();
         const float ss = std::max(p.f("sigma_spatial") * ctx.pixel_scale(), 1e-3f);
-        prog_->use();
-        prog_->set("u_radius", int(std::lround(float(p.i("radius")) * ctx.pixel_scale())));
         prog_->set("u_inv2_sigma_s2", 1.0f / (2.0f * ss * ss));
         prog_->set("u_inv_sigma_d", 1.0f / std::max(p.f("sigma_depth"), 1e-6f));
-        prog_->set("u_normal_power", p.f("normal_power"));  // used only by the pow() variant
-        prog_->set("u_enabled", p.b("enabled") ? 1 : 0);
-        glBindTextureUnit(1, ctx.texture("normal_depth").id);
-        glBindTextureUnit(2, ctx.texture("color").id);
-        glDisable(GL_BLEND);
-        const bool separable = p.b("separable") && p.b("enabled");
-        if (separable) {
+        if (p.b("separable") && p.b("enabled")) {
             // Horizontal: ao -> tmp (filtered ao alone). Background texels of tmp are never read.
-            glBindTextureUnit(0, ctx.texture("ao").id);
             prog_->set("u_step", glm::ivec2(1, 0));
             prog_->set("u_multiply", 0);
             draw(ctx, "tmp", false);
-            glBindTextureUnit(0, ctx.texture("tmp").id);
+            prog_->bind_texture("u_ao", ctx.texture("tmp").id);
             prog_->set("u_step", glm::ivec2(0, 1));
         } else {
-            glBindTextureUnit(0, ctx.texture("ao").id);
             prog_->set("u_step", glm::ivec2(0, 0));
         }
         prog_->set("u_multiply", 1);
@@ -57,7 +47,6 @@ public:
             glClearTexImage(ctx.texture("ao_smooth").id, 0, GL_RGBA, GL_FLOAT, one);
         }
         draw(ctx, "final", true);
-        for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
     }
 
 private:
@@ -75,8 +64,8 @@ private:
             pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
             ctx.draw_fullscreen_on_geometry(*prog_);
         } else {
-            glDisable(GL_DEPTH_TEST);
             ctx.bind_framebuffer(targets(out));
+            prog_->use();
             ctx.draw_fullscreen();
         }
     }
@@ -92,8 +81,8 @@ pathlet::PassTypeInfo bilateral_type() {
     return pathlet::PassTypeBuilder("bilateral",
                                     "depth/normal-aware smoothing of AO, multiplied into the colour; background "
                                     "pixels copied unchanged")
-        .param_int("radius", 4, 0, 16, "filter half-width in pixels ((2r+1)^2 taps)")
-        .param_float("sigma_spatial", 2.5, 0.1, 32.0, "spatial Gaussian sigma in pixels")
+        .param_int("radius", 4, 0, 16, "filter half-width in pixels ((2r+1)^2 taps)", {.pixels = true})
+        .param_float("sigma_spatial", 2.5, 0.1, 32.0, "spatial Gaussian sigma in pixels", {.pixels = true})
         .param_float("sigma_depth", 0.01, 1e-5, 1.0,
                      "depth Gaussian sigma in normalised linear depth (lines further apart do not mix)")
         .param_float("normal_power", 1.0, 0.0, 64.0, "weight max(n.n',0)^power; 0 ignores normals")
@@ -103,11 +92,12 @@ pathlet::PassTypeInfo bilateral_type() {
         .input_texture("ao", "r16f", "LineAO term (1 = unoccluded)")
         .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
         .input_texture("color", "any", "line colour (rgba8 from gbuffer); alpha 0 = background")
-        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped", true)
-        .output_texture("tmp", "r16f", "separable mode: the horizontally filtered AO (an engine-pooled transient)")
+        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped",
+                       {.optional = true})
         .output_texture("final", "rgba8", "colour x smoothed AO")
-        .output_texture("ao_smooth", "r16f", "the smoothed AO alone, 1 on background (bind it to get it)", 1, 1.0f,
-                        true)
+        .output_texture("ao_smooth", "r16f", "the smoothed AO alone, 1 on background (bind it to get it)",
+                        {.optional = true})
+        .internal_texture("tmp", "r16f", "separable mode: the horizontally filtered AO")
         .make<Bilateral>();
 }
 

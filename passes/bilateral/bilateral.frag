@@ -10,10 +10,10 @@ layout(location = 0) out vec4 o_color;
 #ifdef WRITE_AO
 layout(location = 1) out float o_ao;  // the smoothed AO alone (last pass), for per-fragment use
 #endif
-layout(binding = 0) uniform sampler2D u_ao;
-layout(binding = 1) uniform sampler2D u_nd;
-layout(binding = 2) uniform sampler2D u_color;
-uniform int u_radius;
+uniform sampler2D u_ao;     // LineAO's term; in the vertical pass of the separable mode, `tmp`
+uniform sampler2D u_normal_depth;
+uniform sampler2D u_color;
+uniform int u_radius;       // pixels (times the pixel scale)
 uniform float u_inv2_sigma_s2;  // 1 / (2 sigma_spatial^2)
 uniform float u_inv_sigma_d;    // 1 / sigma_depth
 uniform float u_normal_power;  // only when not whole (BILATERAL_NORMAL_POWER) nor 0 (BILATERAL_NO_NORMAL)
@@ -31,7 +31,7 @@ void main() {
 #endif
         return;
     }
-    vec4 nd = texelFetch(u_nd, p, 0);
+    vec4 nd = texelFetch(u_normal_depth, p, 0);
     float ao = texelFetch(u_ao, p, 0).r;
     if (u_enabled && nd_is_geometry(nd)) {
         vec3 n = normalize(nd.xyz);
@@ -44,7 +44,7 @@ void main() {
             for (int i = -u_radius; i <= u_radius; ++i) {
                 ivec2 q = p + axis * i + ivec2(0, j);
                 if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-                vec4 o = texelFetch(u_nd, q, 0);
+                vec4 o = texelFetch(u_normal_depth, q, 0);
                 if (!nd_is_geometry(o)) continue;  // background AO (= 1) must not brighten edges
                 float dz = (o.w - nd.w) * u_inv_sigma_d;
                 float w = exp(-float(i * i + j * j) * u_inv2_sigma_s2 - dz * dz);

@@ -7,18 +7,14 @@ namespace {
 class Blur : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "blur.frag"}); }
+    // u_radius, u_sigma and u_src come from the declaration; the pass only turns the filter.
     void execute(pathlet::PassContext& ctx) override {
         prog_->use();
-        prog_->set("u_radius", ctx.params().i("radius"));
-        prog_->set("u_sigma", ctx.params().f("sigma"));
-        glDisable(GL_DEPTH_TEST);
-        // Horizontal pass: src -> tmp; vertical pass: tmp -> dst.
-        ctx.bind_framebuffer({"tmp"});
-        glBindTextureUnit(0, ctx.texture("src").id);
+        ctx.bind_framebuffer({"tmp"});  // horizontal: src -> tmp
         prog_->set("u_dir", glm::vec2(1, 0));
         ctx.draw_fullscreen();
-        ctx.bind_framebuffer({"dst"});
-        glBindTextureUnit(0, ctx.texture("tmp").id);
+        ctx.bind_framebuffer({"dst"});  // vertical: tmp -> dst
+        prog_->bind_texture("u_src", ctx.texture("tmp").id);
         prog_->set("u_dir", glm::vec2(0, 1));
         ctx.draw_fullscreen();
     }
@@ -32,8 +28,8 @@ pathlet::PassTypeInfo blur_type() {
         .param_int("radius", 4, 0, 64, "kernel half-width in pixels")
         .param_float("sigma", 2.0, 0.1, 64.0, "Gaussian standard deviation in pixels")
         .input_texture("src", "any", "image to blur")
-        .output_texture("tmp", "rgba16f", "horizontal pass result (a transient the engine pools)")
         .output_texture("dst", "rgba8", "blurred image")
+        .internal_texture("tmp", "rgba16f", "horizontal pass result")
         .make<Blur>();
 }
 

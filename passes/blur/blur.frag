@@ -2,7 +2,7 @@
 // One direction of a separable Gaussian; weights normalised so flat areas stay flat.
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
-layout(binding = 0) uniform sampler2D u_src;
+uniform sampler2D u_src;  // the input; in the vertical pass, `tmp`
 uniform int u_radius;
 uniform float u_sigma;
 uniform vec2 u_dir;

@@ -17,6 +17,6 @@ public:
 PATHLET_PLUGIN("clear_list", {
     sink->add(pathlet::PassTypeBuilder("clear_list", "resets OIT's per-pixel linked lists: head pointers and node counter")
                   .output_texture("heads", "r32ui", "per-pixel list head (node index), 0xffffffff = empty")
-                  .output_buffer("counter", 16, 0, "node counter (uint), reset to 0")
+                  .output_buffer("counter", "node counter (uint), reset to 0", {.bytes = 16})
                   .make<ClearList>());
 })

@@ -8,13 +8,15 @@
 
 namespace {
 
+enum class Alpha { opaque, coverage };  // the choices of `alpha`
+
 class EdgeAA : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "edge_aa.frag"}); }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
-        const bool opaque = p.s("alpha") == "opaque";
+        const bool opaque = p.e<Alpha>("alpha") == Alpha::opaque;
         pathlet::Texture src = ctx.texture("color"), dst = ctx.texture("final");
         if (!p.b("enabled") && !opaque) {  // pass through bit for bit
             glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width,
@@ -25,14 +27,7 @@ public:
         // flattened: alpha set to 1, the colour is the background's already). The shader runs on
         // the rectangle only.
         const glm::ivec4 r = pathlet::lines::screen_rect(ctx, 2);
-        prog_->use();
-        prog_->set("u_opaque", opaque ? 1 : 0);
-        glBindTextureUnit(0, ctx.texture("color").id);
-        glBindTextureUnit(1, ctx.texture(p.b("enabled") ? "edge" : "color").id);
-        glBindTextureUnit(2, ctx.texture("depth").id);
-        prog_->set("u_enabled", p.b("enabled") ? 1 : 0);
-        glDisable(GL_BLEND);
-        glDisable(GL_DEPTH_TEST);
+        prog_->use();  // u_alpha, u_enabled and the samplers by declaration
         ctx.bind_framebuffer({"final"});
         glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width,
                            dst.height, 1);
@@ -42,11 +37,8 @@ public:
             glClearBufferfv(GL_COLOR, 0, one);
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
-        {
-            pathlet::lines::ScopedScissor clip(r);
-            ctx.draw_fullscreen();
-        }
-        for (GLuint unit : {0u, 1u, 2u}) glBindTextureUnit(unit, 0);
+        pathlet::lines::ScopedScissor clip(r);
+        ctx.draw_fullscreen();
     }
 
 private:

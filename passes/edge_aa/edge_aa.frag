@@ -6,11 +6,11 @@
 // in front of it gets that line's share the same way. Edges against the background, the wall
 // and lines behind all become smooth, and LineAO, computed per pixel before, is untouched.
 layout(location = 0) out vec4 o_color;
-layout(binding = 0) uniform sampler2D u_color;  // the finished image (straight alpha)
-layout(binding = 1) uniform sampler2D u_edge;   // line_edge(): rim direction, distance, line width
-layout(binding = 2) uniform sampler2D u_depth;  // the G-buffer z-buffer (background 1)
-uniform bool u_opaque;                          // flatten onto the background colour (alpha 1)
-uniform bool u_enabled;                         // false: flatten only
+uniform sampler2D u_color;  // the finished image (straight alpha)
+uniform sampler2D u_edge;   // line_edge(): rim direction, distance, line width (not read when disabled)
+uniform sampler2D u_depth;  // the G-buffer z-buffer (background 1)
+uniform int u_alpha;        // 0 (opaque): flatten onto the background colour (alpha 1); 1: coverage
+uniform bool u_enabled;     // false: flatten only
 
 const ivec2 kNeighbours[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
 
@@ -18,7 +18,7 @@ vec4 premultiplied(ivec2 q) {
     vec4 c = texelFetch(u_color, clamp(q, ivec2(0), textureSize(u_color, 0) - 1), 0);
     // Opaque output: straight colours mix like composited ones, because a background pixel
     // carries the background colour; coverage output: premultiply so alpha 0 adds nothing.
-    return u_opaque ? vec4(c.rgb, 1.0) : vec4(c.rgb * c.a, c.a);
+    return u_alpha == 0 ? vec4(c.rgb, 1.0) : vec4(c.rgb * c.a, c.a);
 }
 
 // Share of a pixel whose centre lies `inside` pixels within a line `width` pixels wide (from
@@ -76,6 +76,6 @@ void main() {
     }
     // Only a line in front of this pixel's surface covers it (one depth fetch, one colour fetch).
     if (best > 0.0 && texelFetch(u_depth, from, 0).r < depth) result = mix(result, premultiplied(from), best);
-    if (u_opaque) o_color = vec4(result.rgb, 1.0);
+    if (u_alpha == 0) o_color = vec4(result.rgb, 1.0);
     else o_color = result.a > 0.0 ? vec4(result.rgb / result.a, result.a) : texelFetch(u_color, p, 0);
 }

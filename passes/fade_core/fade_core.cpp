@@ -8,15 +8,10 @@ namespace {
 
 namespace lines = pathlet::lines;
 
+// core_alpha reaches fade_core.frag's u_core_alpha by declaration.
 class FadeCore : public lines::EndFadePass {
 public:
     FadeCore() : EndFadePass({.color = "fade_core.frag"}) {}
-
-protected:
-    void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& prog) override {
-        EndFadePass::set_uniforms(ctx, prog);
-        prog.set("u_core_alpha", ctx.params().f("core_alpha"));
-    }
 };
 
 pathlet::PassTypeInfo fade_core_type() {

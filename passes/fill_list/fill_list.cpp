@@ -28,7 +28,7 @@ public:
     }
 
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &lines::program(ctx, {"fill_list.frag"});
+        prog_ = &lines::program(ctx, {"fill_list.frag"}, {}, oit::defines());
         fade_.setup(ctx);
         GLint max_texels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
@@ -105,8 +105,7 @@ private:
         }
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         GLuint counter = ctx.buffer("counter").id;
-        glBindImageTexture(0, ctx.texture("heads").id, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-        glBindImageTexture(1, view_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+        prog_->bind_image("u_nodes", view_, GL_RGBA32UI, GL_WRITE_ONLY);  // heads: by declaration
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, oit::kCounterBinding, counter);
         prog_->use();
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
@@ -143,10 +142,11 @@ pathlet::PassTypeInfo fill_list_type() {
         .input_texture("heads", "r32ui", "per-pixel list heads, cleared by clear_list")
         .input_buffer("counter", "node counter, cleared by clear_list")
         .output_texture("coverage", "depth24",
-                        "depth < 1 where any fragment landed (bind it so resolve_list skips empty tiles)", 1, 1.0f, true)
-        .output_buffer("nodes", oit::kNodeBytes, 0,
+                        "depth < 1 where any fragment landed (bind it so resolve_list skips empty tiles)", {.optional = true})
+        .output_buffer("nodes",
                        "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
-                       "overflow");
+                       "overflow",
+                       {.bytes = oit::kNodeBytes});
     return b.make<FillList>();
 }
 

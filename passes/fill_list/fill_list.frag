@@ -11,8 +11,8 @@
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the kit's hook (default: the colour as it is)
 
-layout(binding = 0, r32ui) uniform coherent uimage2D u_heads;
-layout(binding = 1, rgba32ui) uniform writeonly uimageBuffer u_nodes;
+layout(r32ui) uniform coherent uimage2D u_heads;            // the pin, by declaration
+layout(rgba32ui) uniform writeonly uimageBuffer u_nodes;    // the pass's view of the `nodes` buffer
 layout(std430, binding = OIT_COUNTER_BINDING) buffer OitCounter { uint oit_count; };
 uniform int u_capacity;  // nodes that fit; beyond it fragments are only counted
 

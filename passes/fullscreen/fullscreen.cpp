@@ -15,17 +15,12 @@ public:
     void execute(pathlet::PassContext& ctx) override {
         ctx.bind_framebuffer({"color"});
         prog_->use();
-        for (int i = 0; i < 4; ++i) {
-            std::string pin = "input" + std::to_string(i);
-            if (ctx.connected(pin)) glBindTextureUnit(GLuint(i), ctx.texture(pin).id);
-        }
-        // The user's shader declares whichever of these it needs.
+        // The user's shader declares whichever of these it needs (the samplers u_input0..3, u_param
+        // and u_strength come from the declaration).
         const pathlet::ShaderProgram& p = *prog_;
         if (p.declares("u_time")) p.set("u_time", float(ctx.time()));
         if (p.declares("u_frame")) p.set("u_frame", int(ctx.frame_index()));
         if (p.declares("u_size")) p.set("u_size", ctx.output_size());
-        if (p.declares("u_param")) p.set("u_param", glm::vec4(ctx.params().v3("param"), ctx.params().f("strength")));
-        glDisable(GL_DEPTH_TEST);
         ctx.draw_fullscreen();
     }
 
@@ -36,12 +31,14 @@ private:
 pathlet::PassTypeInfo fullscreen_type() {
     auto b = pathlet::PassTypeBuilder(
         "fullscreen",
-        "runs a fragment shader file over the output; inputs on units 0-3, uniforms u_time u_frame u_size u_param");
+        "runs a fragment shader file over the output: samplers u_input0..u_input3, uniforms u_time u_frame u_size "
+        "u_param u_strength");
     b.param_string("shader", "gradient.frag", "fragment shader file, looked up on the shader path")
-        .param_vec3("param", {1, 1, 1}, "free vector handed to the shader as u_param.xyz")
-        .param_float("strength", 1.0, -100.0, 100.0, "free scalar handed to the shader as u_param.w");
+        .param_vec3("param", {1, 1, 1}, "free vector handed to the shader as u_param")
+        .param_float("strength", 1.0, -100.0, 100.0, "free scalar handed to the shader as u_strength");
     for (int i = 0; i < 4; ++i)
-        b.input_texture("input" + std::to_string(i), "any", "optional input on texture unit " + std::to_string(i), true);
+        b.input_texture("input" + std::to_string(i), "any", "optional input, sampler u_input" + std::to_string(i),
+                        {.optional = true});
     return b.output_texture("color", "rgba8", "the shader's output").make<Fullscreen>();
 }
 

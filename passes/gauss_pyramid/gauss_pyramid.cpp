@@ -11,6 +11,8 @@
 
 namespace {
 
+enum class Mode { gaussian, box };  // the choices of `mode`
+
 class GaussPyramid : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
@@ -21,19 +23,15 @@ public:
         const auto& p = ctx.params();
         pathlet::Texture pyr = ctx.texture("pyramid");
         const int levels = std::clamp(p.i("levels"), 1, pyr.mips);
-        const int mode = p.s("mode") == "box" ? 2 : 1;
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
         prog_->use();
-
         const GLuint input = ctx.texture("normal_depth").id;
         if (p.b("copy_level0")) {
             ctx.bind_framebuffer({"pyramid"}, "", 0);
-            glBindTextureUnit(0, input);
+            prog_->bind_texture("u_src", input);
             prog_->set("u_mode", 0);
             ctx.draw_fullscreen();
         }
-        prog_->set("u_mode", mode);
+        prog_->set("u_mode", p.e<Mode>("mode") == Mode::box ? 2 : 1);
         // Only the lines' screen rectangle can hold geometry: each level is cleared to
         // background and the filter runs inside the rectangle (same texels as a full pass).
         const glm::ivec4 rect = pathlet::lines::screen_rect(ctx, 2);
@@ -45,11 +43,10 @@ public:
             // Level 1 reads the input itself; deeper levels read a view of exactly level-1, so
             // the level being written is never sampled and no texture parameter changes
             // (changing BASE/MAX_LEVEL made llvmpipe wait for the previous draw: ~10 ms a level).
-            glBindTextureUnit(0, level == 1 ? input : level_view(pyr, level - 1));
+            prog_->bind_texture("u_src", level == 1 ? input : level_view(pyr, level - 1));
             ctx.bind_framebuffer({"pyramid"}, "", level);
             ctx.draw_fullscreen();
         }
-        glBindTextureUnit(0, 0);
         ctx.stat("levels built", levels);
     }
 
@@ -87,7 +84,7 @@ pathlet::PassTypeInfo gauss_pyramid_type() {
                     "write level 0 (a copy of the input); lineao reads level 0 from normal_depth itself, so "
                     "graphs feeding only lineao may turn this off and save one full-screen rgba16f write")
         .input_texture("normal_depth", "rgba16f", "view-space normal (xyz) and normalised linear depth (w)")
-        .output_texture("pyramid", "rgba16f", "the pyramid; mip l = level l", 0 /* full chain */)
+        .output_texture("pyramid", "rgba16f", "the pyramid; mip l = level l", {.mips = 0 /* full chain */})
         .make<GaussPyramid>();
 }
 

@@ -1,11 +1,10 @@
 #version 450 core
-// One level of the normal/depth pyramid. u_src is bound so that lod 0 is the previous
-// level (the pass narrows the pyramid's BASE/MAX_LEVEL to it, so the level being written is
-// never a sampled level: no feedback loop).
+// One level of the normal/depth pyramid. u_src is the previous level (a one-level view of it,
+// so the level being written is never a sampled level: no feedback loop), or the input.
 #include "lineao_common.glsl"
 
 layout(location = 0) out vec4 o_nd;
-layout(binding = 0) uniform sampler2D u_src;
+uniform sampler2D u_src;
 uniform int u_mode;  // 0 copy (level 0), 1 Gaussian, 2 box
 
 // [1 3 3 1]/8 is the binomial kernel centred between two fine texels, i.e. on the coarse

@@ -35,9 +35,7 @@ public:
         prog_->use();
         glm::vec3 dir = p.v3("light_dir");
         glm::vec3 to_light = glm::length(dir) > 1e-12f ? -glm::normalize(dir) : glm::vec3(0, 0, 1);
-        prog_->set("u_light", to_light);
-        prog_->set("u_k", glm::vec4(p.f("ambient"), p.f("diffuse"), p.f("specular"), p.f("exponent")));
-        prog_->set("u_diffuse_exponent", p.f("diffuse_exponent"));
+        prog_->set("u_light", to_light);  // the other factors by declaration
         drawer_.draw(ctx, *prog_);
     }
 
@@ -62,8 +60,7 @@ pathlet::PassTypeInfo isl_type() {
                      "diffuse exponent p (1: Zoeckler's term; larger p darkens lines along the light, cf. Mallo et al.)")
         .output_texture("color", "rgba8", "the lit image; background colour where there are no lines")
         .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)")
-        .output_texture("edge", "rgba8", "the nearer rim per pixel for edge_aa, as the gbuffer's (bind it to get it)",
-                        1, 1.0f, /*optional=*/true);
+        .output_texture("edge", "rgba8", "the nearer rim per pixel for edge_aa, as the gbuffer's (bind it to get it)", {.optional = true});
     return b.make<Isl>();
 }
 

@@ -7,8 +7,10 @@
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's hook (default: the colour as it is)
 
-uniform vec3 u_light;  // towards the light, view space, unit
-uniform vec4 u_k;      // ambient, diffuse, specular, specular exponent n
+uniform vec3 u_light;  // towards the light, view space, unit (from light_dir)
+// The pass's parameters, by declaration:
+uniform float u_ambient, u_diffuse, u_specular;
+uniform float u_exponent;          // specular exponent n
 uniform float u_diffuse_exponent;
 
 layout(location = 0) out vec4 o_color;
@@ -33,9 +35,9 @@ void main() {
 #ifdef ISL_SPECULAR_EXPONENT
     float specular = pow_whole(max(sl * sv - lt * vt, 0.0), ISL_SPECULAR_EXPONENT);
 #else
-    float specular = pow(max(sl * sv - lt * vt, 0.0), u_k.w);
+    float specular = pow(max(sl * sv - lt * vt, 0.0), u_exponent);
 #endif
-    vec3 lit = c.rgb * (u_k.x + u_k.y * diffuse) + vec3(u_k.z * specular);
+    vec3 lit = c.rgb * (u_ambient + u_diffuse * diffuse) + vec3(u_specular * specular);
     o_color = vec4(line_halo_tint(clamp(lit, 0.0, 1.0), f), 1.0);
 #ifdef WRITE_EDGE
     o_edge = line_edge(f);

@@ -1,27 +1,29 @@
 #version 450 core
 // LineAO (Eichelbaum et al. 2013) as specified in shared/LINEAO.md. Loop bounds and every
 // per-level constant are uniforms (computed on the CPU in lineao.cpp), so parameter changes
-// need no recompile; the sample kernel is generated in the loop (level_samples).
+// need no recompile; the sample kernel is generated in the loop (level_samples). Uniforms named
+// after a parameter (u_r0, u_strength, ...) and the samplers named after a pin are set by the
+// SDK from the pass's declaration.
 #include "lineao_common.glsl"
 #include "pow_whole.glsl"
 
 #define MAX_LEVELS 8
 
 layout(location = 0) out float o_ao;
-layout(binding = 0) uniform sampler2D u_nd;       // level-0 normal (xyz) + linear depth (w)
-layout(binding = 1) uniform sampler2D u_pyramid;  // mip l = level l (only read when u_use_pyramid)
-layout(binding = 2) uniform sampler2D u_zoom;     // px per world unit at the fragment
+uniform sampler2D u_normal_depth;  // level-0 normal (xyz) + linear depth (w)
+uniform sampler2D u_pyramid;       // mip l = level l (only read when u_from_pyramid)
+uniform sampler2D u_zoom;          // px per world unit at the fragment
 
-uniform int u_levels;                   // s_r
+uniform int u_radii;                    // s_r
 uniform int u_count[MAX_LEVELS];        // s_h / (l + 1)
 uniform float u_growth[MAX_LEVELS];     // r_l = r0 + growth_l * line width on screen
 uniform float u_delta[MAX_LEVELS];      // delta(l), already guarded > delta0
 uniform vec2 u_level_dir[MAX_LEVELS];   // (cos, sin) of level l's starting angle in the Fibonacci spiral
-uniform float u_r0;                     // px
-uniform float u_line_width;             // world units
+uniform float u_r0;                     // px (times the pixel scale)
+uniform float u_step_width;             // world units per radius step: the line width drawn
 uniform float u_strength;
 uniform float u_delta0;
-uniform bool u_use_pyramid;
+uniform bool u_from_pyramid;            // use_pyramid and the pyramid is connected
 uniform int u_max_lod;
 uniform int u_lod_offset;               // log2 of the pixel scale: level l reads the mip of the same footprint
 uniform bool u_occluder_light;
@@ -29,7 +31,7 @@ uniform vec3 u_light;                   // unit, view space
 uniform float u_exponent;
 uniform uint u_seed;
 uniform float u_spec_cut;               // below this cosine, cos^exponent < 1e-4: skip the pow
-uniform bool u_half;                    // half resolution: this fragment stands for full-res pixel 2p
+uniform int u_resolution;               // 1 (half): this fragment stands for full-res pixel 2p
 
 // The samples of level l: sum of g_depth * g_light and n_l. `pyramid` is a constant at each
 // call, so each inlined copy has one texel fetch: llvmpipe evaluates both sides of a select,
@@ -53,7 +55,7 @@ void level_samples(const bool pyramid, int l, int lod, ivec2 lod_size, ivec2 siz
         float len = 0.25 + 0.75 * fract(radial + rnd_y);
         ivec2 q = ivec2(floor(frag + w.xy * (len * radius)));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-        vec4 occ = pyramid ? texelFetch(u_pyramid, min(q >> lod, lod_size - 1), lod) : texelFetch(u_nd, q, 0);
+        vec4 occ = pyramid ? texelFetch(u_pyramid, min(q >> lod, lod_size - 1), lod) : texelFetch(u_normal_depth, q, 0);
         if (!nd_is_geometry(occ)) continue;
         ++used;
         float dd = d - occ.w;       // > 0: the sample is in front of P
@@ -79,17 +81,17 @@ void level_samples(const bool pyramid, int l, int lod, ivec2 lod_size, ivec2 siz
 void main() {
     // Everything below is in full-resolution pixels; at half resolution a fragment computes the
     // term of the first pixel of its 2x2 block (lineao_upsample.frag fills in the others).
-    vec2 frag = u_half ? vec2(ivec2(gl_FragCoord.xy) * 2) + 0.5 : gl_FragCoord.xy;
+    vec2 frag = u_resolution == 1 ? vec2(ivec2(gl_FragCoord.xy) * 2) + 0.5 : gl_FragCoord.xy;
     ivec2 p = ivec2(frag);
-    vec4 nd = texelFetch(u_nd, p, 0);
+    vec4 nd = texelFetch(u_normal_depth, p, 0);
     if (!nd_is_geometry(nd)) {  // background: skipped, unoccluded
         o_ao = 1.0;
         return;
     }
     vec3 n = normalize(nd.xyz);
     float d = nd.w;
-    ivec2 size = textureSize(u_nd, 0);
-    float width_px = texelFetch(u_zoom, p, 0).r * u_line_width;
+    ivec2 size = textureSize(u_normal_depth, 0);
+    float width_px = texelFetch(u_zoom, p, 0).r * u_step_width;
 
     // Fixed per-pixel rotation about the view axis and radial offset: reproducible noise.
     vec2 rnd = lineao_rand2(lineao_hash3(uvec3(p, u_seed)));
@@ -97,10 +99,10 @@ void main() {
     mat2 rot = mat2(cos(ang), sin(ang), -sin(ang), cos(ang));
 
     float line_ao = 0.0;
-    for (int l = 0; l < u_levels; ++l) {
+    for (int l = 0; l < u_radii; ++l) {
         float radius = u_r0 + u_growth[l] * width_px;
         // Where level l's samples come from, decided once per level (not per sample).
-        bool from_pyramid = u_use_pyramid && l > 0;
+        bool from_pyramid = u_from_pyramid && l > 0;
         int lod = from_pyramid ? min(l + u_lod_offset, u_max_lod) : 0;
         ivec2 lod_size = from_pyramid ? textureSize(u_pyramid, lod) : size;
         float sum;
@@ -111,5 +113,5 @@ void main() {
             level_samples(false, l, lod, lod_size, size, frag, n, d, rot, rnd.y, radius, sum, used);
         line_ao += used > 0 ? sum / float(used) : 0.0;  // empty level: 0, never NaN
     }
-    o_ao = clamp(1.0 - u_strength / float(u_levels) * line_ao, 0.0, 1.0);
+    o_ao = clamp(1.0 - u_strength / float(u_radii) * line_ao, 0.0, 1.0);
 }

@@ -7,15 +7,15 @@
 #include "lineao_common.glsl"
 
 layout(location = 0) out float o_ao;
-layout(binding = 0) uniform sampler2D u_nd;    // full-res normal + linear depth
-layout(binding = 1) uniform sampler2D u_half;  // half-res AO: texel h holds full-res pixel 2h
+uniform sampler2D u_normal_depth;  // full-res normal + linear depth
+uniform sampler2D u_half;          // half-res AO (lineao's internal texture): texel h holds full-res pixel 2h
 uniform float u_inv_sigma_d;                   // 1 / depth tolerance (normalised linear depth)
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec4 nd = texelFetch(u_nd, p, 0);
+    vec4 nd = texelFetch(u_normal_depth, p, 0);
     ivec2 hs = textureSize(u_half, 0);
-    ivec2 full = textureSize(u_nd, 0);
+    ivec2 full = textureSize(u_normal_depth, 0);
     // Position in half-res texel units, relative to texel centres at 2h.
     vec2 f = vec2(p) * 0.5;
     ivec2 h0 = ivec2(floor(f));
@@ -25,7 +25,7 @@ void main() {
         for (int i = 0; i <= 1; ++i) {
             ivec2 h = clamp(h0 + ivec2(i, j), ivec2(0), hs - 1);
             ivec2 src = min(h * 2, full - 1);
-            vec4 o = texelFetch(u_nd, src, 0);
+            vec4 o = texelFetch(u_normal_depth, src, 0);
             if (!nd_is_geometry(o)) continue;
             float wb = (i == 0 ? 1.0 - t.x : t.x) * (j == 0 ? 1.0 - t.y : t.y) + 1e-3;
             float dz = (o.w - nd.w) * u_inv_sigma_d;

@@ -88,7 +88,6 @@ public:
         glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width, dst.height, 1);
         if (!p.b("show")) return;
         ctx.bind_framebuffer({"final"});
-        glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         // Straight alpha over straight alpha: a transparent background gains the text's alpha.
         glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -96,7 +95,6 @@ public:
         glBindVertexArray(vao_);
         const glm::ivec2 size = ctx.output_size();
         prog_->set("u_size", glm::vec2(size));
-        prog_->set("u_colormap", pathlet::lines::colormap_index(p.s("colormap")));
         const glm::vec4 ink(p.v3("text_color"), 1.0f);
         const float m = std::round(0.6f * float(font_px_));  // margin from the image border
 
@@ -121,9 +119,6 @@ public:
             text(min_label_, x0 - gap - float(min_label_.width), y1 - float(min_label_.ascent) * 0.65f, ink);
             text(unit_label_, std::min(x1 - float(unit_label_.width), x0), y0 - gap - float(unit_label_.height), ink);
         }
-        glDisable(GL_BLEND);
-        glBindTextureUnit(0, 0);
-        glBindVertexArray(0);
     }
 
     ~Overlay() override {
@@ -145,7 +140,7 @@ private:
         y = std::round(y);
         prog_->set("u_mode", 0);
         prog_->set("u_color", c);
-        glBindTextureUnit(0, l.tex);
+        prog_->bind_texture("u_text", l.tex);
         // The quad spans the whole (grown) texture; the unused part is zero coverage.
         rect(x, y, x + float(l.tex_w), y + float(l.tex_h));
     }

@@ -4,10 +4,10 @@
 #include "colormap.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
-layout(binding = 0) uniform sampler2D u_text;
+uniform sampler2D u_text;
 uniform int u_mode;  // 0 text, 1 colour bar, 2 solid
 uniform vec4 u_color;
-uniform int u_colormap;
+uniform int u_colormap;  // the parameter, by declaration
 void main() {
     if (u_mode == 0) o_color = vec4(u_color.rgb, u_color.a * texture(u_text, v_uv).r);
     else if (u_mode == 1) o_color = vec4(colormap(u_colormap, 1.0 - v_uv.y), 1.0);

@@ -10,6 +10,8 @@
 
 namespace {
 
+constexpr GLuint kStatsBinding = 9;  // RESOLVE_STATS_BINDING: peak list length, truncated pixels
+
 class ResolveList : public pathlet::Pass {
 public:
     ~ResolveList() override {
@@ -19,7 +21,8 @@ public:
 
     void setup(pathlet::PassContext& ctx) override {
         targets_ = {"color"};
-        std::vector<std::string> defines;
+        std::vector<std::string> defines = pathlet::oit::defines();
+        defines.push_back("RESOLVE_STATS_BINDING " + std::to_string(kStatsBinding));
         for (const char* pin : {"unlit", "front_alpha"})
             if (ctx.connected(pin)) {
                 defines.push_back(std::string(pin == std::string("unlit") ? "UNLIT_LOCATION " : "FRONT_ALPHA_LOCATION ") +
@@ -54,27 +57,15 @@ public:
                 glClearTexImage(ctx.texture(t).id, 0, GL_RGBA, GL_FLOAT, t == "front_alpha" ? &none.x : &bg.x);
         }
         ctx.bind_framebuffer(targets_, skip_empty ? "coverage" : "");
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        glBindImageTexture(0, ctx.texture("heads").id, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindTextureUnit(1, view_);
-        const bool ao = ctx.connected("ao");
-        if (ao) {
-            glBindTextureUnit(2, ctx.texture("ao").id);
-            glBindTextureUnit(3, ctx.texture("core").id);
-        }
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, stats_);
-        prog_->use();
-        prog_->set("u_max_fragments", p.i("max_fragments"));
-        prog_->set("u_use_ao", ao ? 1 : 0);
-        prog_->set("u_ao_tolerance", p.f("ao_tolerance"));
-        prog_->set("u_background", p.v3("background"));
+        prog_->bind_texture("u_nodes", view_);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatsBinding, stats_);
+        prog_->use();  // heads, ao, core and the parameters by declaration
+        prog_->set("u_use_ao", ctx.connected("ao") ? 1 : 0);
         if (skip_empty) ctx.draw_fullscreen_on_geometry(*prog_);
         else ctx.draw_fullscreen();
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         GLuint s[2] = {0, 0};
         glGetNamedBufferSubData(stats_, 0, sizeof(s), s);
-        for (GLuint unit : {1u, 2u, 3u}) glBindTextureUnit(unit, 0);
         ctx.stat("peak_nodes_per_pixel", double(s[0]));
         ctx.stat("truncated_pixels", double(s[1]));
     }
@@ -102,14 +93,13 @@ PATHLET_PLUGIN("resolve_list", {
             .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
             .input_texture("heads", "r32ui", "per-pixel list heads (fill_list)")
             .input_buffer("nodes", "list nodes (fill_list)")
-            .input_texture("ao", "r16f", "smoothed AO of the opaque core (bilateral's ao_smooth)", true)
-            .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core)", true)
+            .input_texture("ao", "r16f", "smoothed AO of the opaque core (bilateral's ao_smooth)", {.optional = true})
+            .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core)", {.optional = true})
             .input_texture("coverage", "depth24",
-                           "fill_list's coverage depth: when connected, pixels without fragments are only cleared", true)
+                           "fill_list's coverage depth: when connected, pixels without fragments are only cleared", {.optional = true})
             .output_texture("color", "rgba8",
                             "composited colour, alpha 1 where any fragment landed (lit by AO when ao is connected)")
-            .output_texture("unlit", "rgba8", "the same composite without AO (bind it to get it)", 1, 1.0f, true)
-            .output_texture("front_alpha", "r16f", "opacity of each pixel's nearest fragment, 0 where none", 1, 1.0f,
-                            true)
+            .output_texture("unlit", "rgba8", "the same composite without AO (bind it to get it)", {.optional = true})
+            .output_texture("front_alpha", "r16f", "opacity of each pixel's nearest fragment, 0 where none", {.optional = true})
             .make<ResolveList>());
 })

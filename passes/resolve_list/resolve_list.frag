@@ -9,11 +9,12 @@
 
 #define K_MAX 64
 
-layout(binding = 0, r32ui) uniform readonly uimage2D u_heads;
-layout(binding = 1) uniform usamplerBuffer u_nodes;
-layout(binding = 2) uniform sampler2D u_ao;    // smoothed AO of the core (when u_use_ao)
-layout(binding = 3) uniform sampler2D u_core;  // the core's normal + linear depth (w)
-layout(std430, binding = 9) buffer OitResolveStats { uint peak_nodes; uint truncated_pixels; };
+// The pins, by declaration (u_nodes is the pass's view of the `nodes` buffer):
+layout(r32ui) uniform readonly uimage2D u_heads;
+uniform usamplerBuffer u_nodes;
+uniform sampler2D u_ao;    // smoothed AO of the core (when u_use_ao)
+uniform sampler2D u_core;  // the core's normal + linear depth (w)
+layout(std430, binding = RESOLVE_STATS_BINDING) buffer OitResolveStats { uint peak_nodes; uint truncated_pixels; };
 uniform int u_max_fragments;  // K <= K_MAX
 uniform int u_use_ao;
 uniform float u_ao_tolerance;  // linear depth within which a fragment counts as the core surface

@@ -28,23 +28,16 @@ public:
         prog_->set("u_proj_scale", glm::vec2(cam.proj[0][0], cam.proj[1][1]));
         prog_->set("u_near_far", glm::vec2(cam.near_plane, cam.far_plane));
         prog_->set("u_prev_near_far", glm::vec2(prev_.near_plane, prev_.far_plane));
-        prog_->set("u_alpha", std::clamp(p.f("alpha"), 0.0f, 1.0f));
-        prog_->set("u_depth_tolerance", p.f("depth_tolerance"));
         prog_->set("u_history_valid", (have_prev_ && p.b("enabled")) ? 1 : 0);
-        const char* pins[] = {"ao", "ao_prev", "normal_depth", "normal_depth_prev", "line_id", "line_id_prev"};
-        for (GLuint unit = 0; unit < 6; ++unit) glBindTextureUnit(unit, ctx.texture(pins[unit]).id);
-        glDisable(GL_BLEND);
         if (ctx.connected("depth")) {
             // Only covered pixels: background AO is never read (bilateral skips it, and the
             // history is read only where the line id matches).
             ctx.bind_framebuffer({"ao_acc"}, "depth");
             ctx.draw_fullscreen_on_geometry(*prog_);
         } else {
-            glDisable(GL_DEPTH_TEST);
             ctx.bind_framebuffer({"ao_acc"});
             ctx.draw_fullscreen();
         }
-        for (GLuint unit = 0; unit < 6; ++unit) glBindTextureUnit(unit, 0);
         prev_ = cam;
         have_prev_ = true;
     }
@@ -68,7 +61,8 @@ pathlet::PassTypeInfo temporal_ao_type() {
         .input_texture("normal_depth_prev", "rgba16f", "last frame's normal_depth (normal_depth@prev)")
         .input_texture("line_id", "r32i", "line id per pixel, -1 on background (gbuffer's line_id)")
         .input_texture("line_id_prev", "r32i", "last frame's line id (line_id@prev)")
-        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped", true)
+        .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped",
+                       {.optional = true})
         .output_texture("ao_acc", "r16f", "accumulated AO; make it a history resource")
         .make<TemporalAo>();
 }

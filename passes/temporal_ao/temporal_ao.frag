@@ -5,26 +5,27 @@
 #include "lineao_common.glsl"
 
 layout(location = 0) out float o_ao;
-layout(binding = 0) uniform sampler2D u_ao;        // this frame's AO
-layout(binding = 1) uniform sampler2D u_hist;      // last frame's accumulated AO
-layout(binding = 2) uniform sampler2D u_nd;        // normal (xyz), linear depth (w)
-layout(binding = 3) uniform sampler2D u_nd_prev;
-layout(binding = 4) uniform isampler2D u_id;       // line id, -1 on background
-layout(binding = 5) uniform isampler2D u_id_prev;
+// The pins, by declaration:
+uniform sampler2D u_ao;                  // this frame's AO
+uniform sampler2D u_ao_prev;             // last frame's accumulated AO
+uniform sampler2D u_normal_depth;        // normal (xyz), linear depth (w)
+uniform sampler2D u_normal_depth_prev;
+uniform isampler2D u_line_id;            // line id, -1 on background
+uniform isampler2D u_line_id_prev;
 uniform mat4 u_cur_to_prev_view;  // prev_view * inverse(view)
 uniform mat4 u_prev_proj;
 uniform vec2 u_proj_scale;        // proj[0][0], proj[1][1] (symmetric perspective)
 uniform vec2 u_near_far, u_prev_near_far;
-uniform float u_alpha;            // weight of this frame
-uniform float u_depth_tolerance;  // in normalised linear depth
+uniform float u_alpha;            // weight of this frame (the parameter, by declaration)
+uniform float u_depth_tolerance;  // in normalised linear depth (the parameter)
 uniform bool u_history_valid;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float ao = texelFetch(u_ao, p, 0).r;
     o_ao = ao;
-    int id = texelFetch(u_id, p, 0).r;
-    vec4 nd = texelFetch(u_nd, p, 0);
+    int id = texelFetch(u_line_id, p, 0).r;
+    vec4 nd = texelFetch(u_normal_depth, p, 0);
     if (!u_history_valid || id < 0 || !nd_is_geometry(nd)) return;
     vec2 size = vec2(textureSize(u_ao, 0));
     vec2 ndc = (vec2(p) + 0.5) / size * 2.0 - 1.0;
@@ -36,7 +37,7 @@ void main() {
     ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * size));
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(size)))) return;
     float expected = (-prev_view.z - u_prev_near_far.x) / (u_prev_near_far.y - u_prev_near_far.x);
-    if (texelFetch(u_id_prev, q, 0).r != id) return;
-    if (abs(texelFetch(u_nd_prev, q, 0).w - expected) > u_depth_tolerance) return;
-    o_ao = mix(texelFetch(u_hist, q, 0).r, ao, u_alpha);
+    if (texelFetch(u_line_id_prev, q, 0).r != id) return;
+    if (abs(texelFetch(u_normal_depth_prev, q, 0).w - expected) > u_depth_tolerance) return;
+    o_ao = mix(texelFetch(u_ao_prev, q, 0).r, ao, u_alpha);
 }

@@ -1,6 +1,7 @@
 // A fade strategy in one small plugin: pathlets lose their colour with age. The line kit
 // (pathlet/lines.hpp) draws the pathlets and writes LineAO's G-buffer; this pass adds only a
-// colour hook (desaturate_color.frag) and the parameters it reads.
+// colour hook (desaturate_color.frag) and its parameters, which reach the hook's uniforms
+// u_start, u_grey and u_dither by declaration.
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
@@ -9,14 +10,6 @@ namespace {
 class DesaturateFade : public pathlet::lines::GBufferPass {
 public:
     DesaturateFade() : GBufferPass({.color = "desaturate_color.frag"}) {}
-
-protected:
-    void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& prog) override {
-        const pathlet::Params& p = ctx.params();
-        prog.set("u_start", p.f("start"));
-        prog.set("u_grey", p.v3("grey"));
-        prog.set("u_dither", p.b("dither") ? 1 : 0);
-    }
 };
 
 }  // namespace

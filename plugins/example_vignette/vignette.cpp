@@ -1,5 +1,7 @@
 // vignette: darkens an image towards its corners. A template for your own pass: declare
 // parameters and pins once in the builder, compile programs in setup(), draw in execute().
+// The declaration binds: `strength` and `radius` reach vignette.frag's u_strength and u_radius,
+// the input `src` its sampler u_src.
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
@@ -15,10 +17,6 @@ public:
     void execute(pathlet::PassContext& ctx) override {
         ctx.bind_framebuffer({"dst"});
         prog_->use();
-        prog_->set("u_strength", ctx.params().f("strength"));
-        prog_->set("u_radius", ctx.params().f("radius"));
-        glBindTextureUnit(0, ctx.texture("src").id);
-        glDisable(GL_DEPTH_TEST);
         ctx.draw_fullscreen();
     }
 

@@ -1,7 +1,7 @@
 #version 450 core
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
-layout(binding = 0) uniform sampler2D u_src;
+uniform sampler2D u_src;  // the pin `src`
 uniform float u_strength;
 uniform float u_radius;
 void main() {

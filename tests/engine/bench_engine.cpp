@@ -85,7 +85,8 @@ struct ByHand {
         glViewport(0, 0, size.x, size.y);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo[0]);
         pattern.use();
-        pattern.set("u_param", glm::vec4(1, 1, 1, 1));
+        pattern.set("u_param", glm::vec3(1, 1, 1));
+        pattern.set("u_strength", 1.0f);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         blur.use();
         for (size_t i = 2; i < tex.size(); i += 2) {

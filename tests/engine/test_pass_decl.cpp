@@ -20,7 +20,7 @@ PassTypeInfo sample_type() {
         .param_color("halo_color", {0, 0, 0}, "halo colour")
         .param_bool("pyramid", true, "use the pyramid")
         .input_texture("normal_depth", "rgba16f", "G-buffer")
-        .input_texture("extra", "any", "optional", true)
+        .input_texture("extra", "any", "optional", {.optional = true})
         .output_texture("ao", "r16f", "ambient occlusion")
         .make<Nop>();
 }

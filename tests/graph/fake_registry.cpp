@@ -23,7 +23,7 @@ PassRegistry make() {
             .param_color("tint", {1, 1, 1}, "tint")
             .input_texture("depth", "depth32f", "depth")
             .input_texture("normal", "any", "normals")
-            .output_texture("ao", "r8", "occlusion", 1, 0.5f));
+            .output_texture("ao", "r8", "occlusion", {.scale = 0.5f}));
     add(PassTypeBuilder("blur", "blur")
             .param_int("taps", 5, 1, 31, "taps")
             .input_texture("src", "any", "source")
@@ -32,8 +32,8 @@ PassRegistry make() {
             .input_texture("depth", "depth32f", "depth")
             .input_texture("normal", "rgba16f", "normals")
             .input_texture("albedo", "rgba8", "albedo")
-            .input_texture("ao", "r8", "occlusion", true)
-            .input_buffer("lights", "lights", true)
+            .input_texture("ao", "r8", "occlusion", {.optional = true})
+            .input_buffer("lights", "lights", {.optional = true})
             .output_texture("color", "rgba16f", "lit"));
     add(PassTypeBuilder("taa", "temporal AA")
             .input_texture("current", "rgba16f", "this frame")
@@ -44,17 +44,17 @@ PassRegistry make() {
             .param_enum("operator", "aces", {"aces", "reinhard"}, "curve")
             .input_texture("src", "any", "hdr")
             .output_texture("dst", "rgba8", "ldr"));
-    add(PassTypeBuilder("mipgen", "mip chain").input_texture("src", "any", "src").output_texture("dst", "rgba16f", "mips", 0));
-    add(PassTypeBuilder("particles", "particle list").output_buffer("list", 0, 16, "16 B per pixel"));
-    add(PassTypeBuilder("counter", "counters").output_buffer("counts", 1024, 0, "1 KiB"));
+    add(PassTypeBuilder("mipgen", "mip chain").input_texture("src", "any", "src").output_texture("dst", "rgba16f", "mips", {.mips = 0}));
+    add(PassTypeBuilder("particles", "particle list").output_buffer("list", "16 B per pixel", {.bytes_per_pixel = 16}));
+    add(PassTypeBuilder("counter", "counters").output_buffer("counts", "1 KiB", {.bytes = 1024}));
     add(PassTypeBuilder("draw", "draws a list")
             .input_buffer("list", "list")
-            .input_buffer("counts", "counts", true)
+            .input_buffer("counts", "counts", {.optional = true})
             .output_texture("color", "rgba8", "image"));
     add(PassTypeBuilder("anyout", "format chosen by the graph").output_texture("dst", "any", "dst"));
     add(PassTypeBuilder("mix", "mixes up to two inputs")
-            .input_texture("a", "any", "a", true)
-            .input_texture("b", "any", "b", true)
+            .input_texture("a", "any", "a", {.optional = true})
+            .input_texture("b", "any", "b", {.optional = true})
             .output_texture("dst", "rgba16f", "mixed"));
     return reg;
 }

@@ -75,7 +75,7 @@ CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::iv
     std::vector<int> output_res;
     for (const auto& o : g.outputs) {
         std::string err;
-        int r = idx.resolve(o.resource, err);
+        int r = idx.resolve(o.resource, err, /*allow_internal=*/true);
         int w = idx.writer(r);
         if (w >= 0 && !enabled[w])
             diags.push_back({g.path, o.pointer + "/resource", "output '" + o.resource + "' is written by pass '" +

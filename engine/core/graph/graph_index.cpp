@@ -21,9 +21,13 @@ std::vector<std::string> GraphIndex::resource_names() const {
     return v;
 }
 
-int GraphIndex::resolve(const std::string& ref, std::string& err) const {
+int GraphIndex::resolve(const std::string& ref, std::string& err, bool allow_internal) const {
     err.clear();
-    if (int r = find_resource(ref); r >= 0) return r;
+    if (int r = find_resource(ref); r >= 0) {
+        if (!resources[r].internal || allow_internal) return r;
+        err = "'" + ref + "' is a pass's internal texture (its own, allocated by the engine); no other pass reads it";
+        return -1;
+    }
     const size_t dot = ref.find('.');
     if (dot == std::string::npos) {
         err = "unknown resource '" + ref + "'" + did_you_mean(ref, resource_names());
@@ -43,7 +47,7 @@ int GraphIndex::resolve(const std::string& ref, std::string& err) const {
     if (!pd || pd->dir != PinDir::Output) {
         std::vector<std::string> outs;
         for (const auto& p : t->pins)
-            if (p.dir == PinDir::Output) outs.push_back(p.name);
+            if (p.dir == PinDir::Output && !p.internal) outs.push_back(p.name);
         err = "pass '" + pass + "' (type '" + t->type + "') has no output pin '" + pin + "'" + did_you_mean(pin, outs) +
               "; its outputs: " + (outs.empty() ? std::string("none") : join(outs));
         return -1;
@@ -99,6 +103,7 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
             r.name = p.name + "." + pin.name;
             r.kind = pin.kind;
             r.implicit = true;
+            r.internal = pin.internal;
             r.pointer = p.pointer;
             if (idx.resource_by_name.emplace(r.name, int(idx.resources.size())).second) idx.resources.push_back(r);
         }
@@ -113,7 +118,7 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
         auto pins_of = [&](PinDir dir) {
             std::vector<std::string> v;
             for (const auto& pin : t->pins)
-                if (pin.dir == dir) v.push_back(pin.name);
+                if (pin.dir == dir && !pin.internal) v.push_back(pin.name);
             return v;
         };
         for (const bool input : {true, false}) {
@@ -124,7 +129,11 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
                 b.pin = pin;
                 b.pointer = p.pointer + "/" + key + "/" + pointer_escape(pin);
                 const PinDecl* pd = t->pin(pin);
-                if (!pd || pd->dir != dir) {
+                if (pd && pd->internal) {
+                    error(b.pointer, "'" + pin + "' is " + t->type + "'s internal texture (the pass's own, allocated by "
+                                     "the engine): graphs do not bind it; remove this binding");
+                    pd = nullptr;
+                } else if (!pd || pd->dir != dir) {
                     std::string msg = "pass type '" + t->type + "' has no " + (input ? "input" : "output") + " pin '" + pin + "'";
                     if (pd) msg += "; '" + pin + "' is an " + (input ? "output: bind it under \"outputs\"" : "input: bind it under \"inputs\"");
                     else msg += did_you_mean(pin, pins_of(dir));

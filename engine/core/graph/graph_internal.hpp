@@ -56,7 +56,9 @@ struct GraphIndex {
     int find_resource(const std::string& name) const;
     // "resource" or "pass.pin" -> resource index. -1 with `err` set, or -1 with `err` empty when
     // the problem lies elsewhere and was reported there (unknown pass type, bad output binding).
-    int resolve(const std::string& ref, std::string& err) const;
+    // A pass's internal texture is no other pass's input, but a graph output may capture it
+    // (allow_internal): an intermediate to look at.
+    int resolve(const std::string& ref, std::string& err, bool allow_internal = false) const;
     int writer(int r) const { return writers[r].empty() ? -1 : writers[r][0].first; }
     const PinDecl* writer_pin(int r) const;
     std::string resolved_format(int r) const;  // the resource's format, else its writer pin's; "" unknown

@@ -57,6 +57,7 @@ struct ResourceDecl {
     bool history = false;     // keeps last frame's content, readable as "<name>@prev"
     bool persistent = false;  // never pooled; content survives across frames
     bool implicit = false;    // made for an unbound output pin ("<pass>.<pin>")
+    bool internal = false;    // ... for a pass's internal texture: nobody else reads it
     std::string pointer;
 };
 

@@ -216,7 +216,7 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
             continue;
         }
         std::string err;
-        int r = idx.resolve(o.resource, err);
+        int r = idx.resolve(o.resource, err, /*allow_internal=*/true);
         if (r < 0) {
             if (!err.empty()) error(ptr, err);
         } else if (idx.writer(r) < 0 && !idx.resources[r].persistent && !written_by_unknown(r)) {

@@ -1,25 +1,31 @@
 // The line kit's GLSL, shared by every stage that draws pathlet quads. A stage file defines
 // one of LINE_STAGE_VERTEX, LINE_STAGE_GEOMETRY or LINE_STAGE_FRAGMENT before including this
-// and gets that stage's interface and helpers. The uniforms and the per-pathlet buffer are
-// set by the kit's C++ side (pathlet/lines.hpp, lines::Drawer); hooks: line_hooks.glsl.
+// and gets that stage's interface and helpers. The uniform block and the per-pathlet buffer
+// are filled by the kit's C++ side (pathlet/lines.hpp, lines::Drawer), which also defines
+// their binding points (LINE_KIT_BINDING, LINE_PATHLET_BINDING) for every program it makes;
+// hooks: line_hooks.glsl.
 #ifndef PATHLET_LINE_COMMON_GLSL
 #define PATHLET_LINE_COMMON_GLSL
 
 #include "line_hooks.glsl"
 
-uniform mat4 u_view;
-uniform mat4 u_proj;
-uniform vec2 u_window;       // [t0, t1] in seconds
-uniform int u_windowed;      // 0: draw lines whole
-uniform float u_half_width;  // world units, half the quad width (halo included), before the width hook
-uniform float u_max_width_hook;  // the width hook's result is clamped to [0, this] (GpuScene::kMaxWidthHook)
-uniform float u_halo;        // fraction of the width that is halo (0 = none)
-uniform float u_halo_min_px; // the halo band is never thinner than this on screen (pixels)
-uniform float u_halo_depth;  // push-back at the rim, normalised linear depth
-uniform vec3 u_halo_color;
-uniform vec2 u_depth_range;  // camera near, far
-uniform vec2 u_speed_range;  // speed mapped to colour 0 and 1
-uniform int u_colormap;
+// The kit's values for one draw (std140; lines::Drawer writes it as one struct, whose layout
+// is checked against this block when the kit makes a program).
+layout(std140, binding = LINE_KIT_BINDING) uniform LineKit {
+    mat4 u_view;
+    mat4 u_proj;
+    vec2 u_window;           // [t0, t1] in seconds
+    vec2 u_depth_range;      // camera near, far
+    vec2 u_speed_range;      // speed mapped to colour 0 and 1
+    int u_windowed;          // 0: draw lines whole
+    float u_half_width;      // world units, half the quad width (halo included), before the width hook
+    float u_max_width_hook;  // the width hook's result is clamped to [0, this] (GpuScene::kMaxWidthHook)
+    float u_halo;            // fraction of the width that is halo (0 = none)
+    float u_halo_min_px;     // the halo band is never thinner than this on screen (pixels)
+    float u_halo_depth;      // push-back at the rim, normalised linear depth
+    vec3 u_halo_color;
+    int u_colormap;
+};
 
 vec3 line_safe_normalize(vec3 v, vec3 fallback) {
     float l2 = dot(v, v);  // one inverse square root instead of a square root and three divisions
@@ -65,7 +71,7 @@ out LineFragment { LINE_FRAGMENT_MEMBERS } g_out;
 
 // Per line, this frame (lines::Drawer): arc length at the pathlet's head and tail, and the
 // times that age 0 and age 1 stand for.
-layout(std430, binding = 7) readonly buffer LinePathlets { vec4 line_pathlet[]; };
+layout(std430, binding = LINE_PATHLET_BINDING) readonly buffer LinePathlets { vec4 line_pathlet[]; };
 
 // The hook's view of a point at data time `time` and arc length `arc` on line `id`.
 LinePoint line_point(float time, float arc, float speed, int id) {

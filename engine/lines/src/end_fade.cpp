@@ -7,12 +7,7 @@
 namespace pathlet::lines {
 
 namespace {
-const std::vector<std::string> kMeasures{"time", "arc_length"};
-const std::vector<std::string> kCurves{"linear", "smooth", "round"};
-
-int index_of(const std::vector<std::string>& v, const std::string& s) {
-    return int(std::find(v.begin(), v.end(), s) - v.begin());
-}
+enum class Measure { time, arc_length };  // the order of the choices below
 
 // Median speed x window, or with whole lines the median line length.
 float typical_pathlet_length(const Scene& s, float window) {
@@ -45,25 +40,23 @@ PassTypeBuilder& declare_fade_params(PassTypeBuilder& b, double tail_fade, doubl
                      "of the window (fade_measure=time) or of a typical pathlet's length (arc_length); 0 = none")
         .param_float("head_fade", head_fade, 0.0, 1.0,
                      "length of the " + what_fades + " fade at the head (the newest end), the same way; 0 = none")
-        .param_enum("fade_measure", "time", kMeasures,
+        .param_enum("fade_measure", "time", {"time", "arc_length"},
                     "time: fade over a share of the window, as in the study (fast pathlets get long fades, slow "
                     "ones short); arc_length: over a fixed length along the line (share x median speed x window), "
                     "the same on screen for every pathlet")
-        .param_enum("fade_curve", "linear", kCurves,
+        .param_enum("fade_curve", "linear", {"linear", "smooth", "round"},
                     "profile along the fade: linear, smooth (Hermite), round (sqrt: fuller ends)")
         .param_float("fade_floor", 0.0, 0.0, 1.0, "value left at the very end (0 = nothing)");
 }
 
 void EndFade::setup(PassContext& ctx) { reference_ = typical_pathlet_length(ctx.scene().cpu(), ctx.params().f("window")); }
 
+// fade_measure, fade_curve and fade_floor reach line_fade.glsl by declaration (u_<name>); the
+// lengths are derived: in arc-length mode a share of the typical pathlet.
 void EndFade::set_uniforms(PassContext& ctx, const ShaderProgram& prog) const {
     const Params& p = ctx.params();
-    const int measure = index_of(kMeasures, p.s("fade_measure"));
-    const float unit = measure == 0 ? 1.0f : reference_;  // age is already a share of the window
+    const float unit = p.e<Measure>("fade_measure") == Measure::time ? 1.0f : reference_;  // age: a share already
     prog.set("u_fade", glm::vec2(p.f("tail_fade"), p.f("head_fade")) * unit);
-    prog.set("u_fade_measure", measure);
-    prog.set("u_fade_curve", index_of(kCurves, p.s("fade_curve")));
-    prog.set("u_fade_floor", p.f("fade_floor"));
 }
 
 }  // namespace pathlet::lines

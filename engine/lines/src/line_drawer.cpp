@@ -3,6 +3,7 @@
 #include <pathlet/lines.hpp>
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 
 #include <glm/matrix.hpp>
@@ -14,6 +15,41 @@ namespace {
 // geometry shader splits a drawn segment back into at most this many pieces (kMaxPieces in
 // line_quad.geom), so the level of detail joins no more data segments than that.
 constexpr uint32_t kWidthHookMaxSkip = 16;
+
+// The uniform block LineKit of line_common.glsl, std140: written whole once per draw.
+struct KitBlock {
+    glm::mat4 view, proj;
+    glm::vec2 window, depth_range, speed_range;
+    int32_t windowed;
+    float half_width, max_width_hook, halo, halo_min_px, halo_depth;
+    glm::vec3 halo_color;
+    int32_t colormap;
+};
+static_assert(sizeof(KitBlock) == 192, "KitBlock must match LineKit's std140 size");
+
+// The block's layout as GL sees it against KitBlock's, for every program the kit makes (a
+// dozen queries, once per program): a drift between the two (an edited line_common.glsl on the
+// shader path, a kit out of step) is an error naming the member, not wrong lines.
+void check_block_layout(const ShaderProgram& prog) {
+    const std::pair<const char*, size_t> members[] = {
+        {"u_view", offsetof(KitBlock, view)},           {"u_proj", offsetof(KitBlock, proj)},
+        {"u_window", offsetof(KitBlock, window)},       {"u_depth_range", offsetof(KitBlock, depth_range)},
+        {"u_speed_range", offsetof(KitBlock, speed_range)}, {"u_windowed", offsetof(KitBlock, windowed)},
+        {"u_half_width", offsetof(KitBlock, half_width)}, {"u_max_width_hook", offsetof(KitBlock, max_width_hook)},
+        {"u_halo", offsetof(KitBlock, halo)},           {"u_halo_min_px", offsetof(KitBlock, halo_min_px)},
+        {"u_halo_depth", offsetof(KitBlock, halo_depth)}, {"u_halo_color", offsetof(KitBlock, halo_color)},
+        {"u_colormap", offsetof(KitBlock, colormap)}};
+    for (const auto& [name, offset] : members) {
+        const GLuint i = glGetProgramResourceIndex(prog.id(), GL_UNIFORM, name);
+        GLint at = -1;
+        const GLenum prop = GL_OFFSET;
+        if (i != GL_INVALID_INDEX) glGetProgramResourceiv(prog.id(), GL_UNIFORM, i, 1, &prop, 1, nullptr, &at);
+        if (at != GLint(offset))
+            throw ShaderError(std::string("line kit: member ") + name + " of the LineKit block is at offset " +
+                              std::to_string(at) + " in GLSL but " + std::to_string(offset) +
+                              " in lines::Drawer; line_common.glsl and line_drawer.cpp disagree");
+    }
+}
 }  // namespace
 
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
@@ -23,6 +59,8 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     files.insert(files.end(), fragment.begin(), fragment.end());
     files.push_back(hooks.color.empty() ? "line_color_default.frag" : hooks.color);
     std::vector<std::string> all = defines;
+    all.push_back("LINE_KIT_BINDING " + std::to_string(kKitBlockBinding));
+    all.push_back("LINE_PATHLET_BINDING " + std::to_string(kPathletBinding));
     if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
     // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both
     // sides of every branch, so a uniform switch costs all four maps per fragment. setup()
@@ -30,10 +68,13 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     if (ctx.params().raw().contains("colormap"))
         all.push_back("LINE_COLORMAP " + std::to_string(colormap_index(ctx.params().s("colormap"))));
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
-    return ctx.program(files, all);
+    ShaderProgram& prog = ctx.program(files, all);
+    check_block_layout(prog);
+    return prog;
 }
 
 Drawer::~Drawer() {
+    if (block_) glDeleteBuffers(1, &block_);
     if (buffer_) glDeleteBuffers(1, &buffer_);
     if (index_buffer_) glDeleteBuffers(1, &index_buffer_);
 }
@@ -85,20 +126,27 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     float smin = p.f("speed_min") > 0.0f ? p.f("speed_min") : scene.speed_min();
     float smax = p.f("speed_max") > 0.0f ? p.f("speed_max") : scene.speed_max();
     if (!(smax > smin)) smax = smin + 1.0f;
-    prog.set("u_view", cam.view);
-    prog.set("u_proj", cam.proj);
-    prog.set("u_window", glm::vec2(float(t) - window, float(t)));
-    prog.set("u_windowed", windowed ? 1 : 0);
-    scene.note_line_width(scene.line_width(p.f("line_width")));
-    prog.set("u_half_width", 0.5f * scene.line_width(p.f("line_width")));
-    prog.set("u_max_width_hook", GpuScene::kMaxWidthHook);
-    prog.set("u_halo", p.f("halo"));
-    prog.set("u_halo_min_px", p.f("halo_min_px") * ctx.pixel_scale());
-    prog.set("u_halo_depth", p.f("halo_depth"));
-    prog.set("u_halo_color", p.v3("halo_color"));
-    prog.set("u_depth_range", glm::vec2(cam.near_plane, cam.far_plane));
-    prog.set("u_speed_range", glm::vec2(smin, smax));
-    prog.set("u_colormap", colormap_index(p.s("colormap")));
+    const float width = scene.line_width(p.f("line_width"));
+    scene.note_line_width(width);
+    const KitBlock block{cam.view,
+                         cam.proj,
+                         glm::vec2(float(t) - window, float(t)),
+                         glm::vec2(cam.near_plane, cam.far_plane),
+                         glm::vec2(smin, smax),
+                         windowed ? 1 : 0,
+                         0.5f * width,
+                         GpuScene::kMaxWidthHook,
+                         p.f("halo"),
+                         p.f("halo_min_px") * ctx.pixel_scale(),
+                         p.f("halo_depth"),
+                         p.v3("halo_color"),
+                         p.index("colormap")};
+    if (!block_) {
+        glCreateBuffers(1, &block_);
+        glNamedBufferStorage(block_, sizeof(KitBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    glNamedBufferSubData(block_, 0, sizeof(KitBlock), &block);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kKitBlockBinding, block_);
 }
 
 void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {

@@ -27,7 +27,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b) {
                      "fraction of the width drawn as halo, split between both rims (study: 20 %); 0 = off")
         .param_float("halo_min_px", 1.0, 0.0, 16.0,
                      "the halo band is at least this many pixels wide on screen (at most half the half width), so "
-                     "thin lines keep a continuous outline instead of scattered dark pixels; 0 = the fraction alone")
+                     "thin lines keep a continuous outline instead of scattered dark pixels; 0 = the fraction alone",
+                     {.pixels = true})
         .param_color("halo_color", {0.0f, 0.0f, 0.0f},
                      "colour the halo gradient runs to at the rim (dark edges read as tube outlines)")
         .param_float("halo_depth", 0.01, 0.0, 1.0,
@@ -40,7 +41,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b) {
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour of pixels without lines")
         .param_float("lod", 0.1, 0.0, 16.0,
                      "level of detail: points a Douglas-Peucker simplification of the line drops within this many "
-                     "pixels (at the line's nearest distance) are not drawn; 0 = every point, exact");
+                     "pixels (at the line's nearest distance) are not drawn; 0 = every point, exact",
+                     {.pixels = true});
 }
 
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b) {
@@ -50,13 +52,13 @@ PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b) {
                         "background: (0, 0, 0, 1)")
         .output_texture("zoom", "r32f", "pixels per world unit at the fragment, (H/2) P[1][1] / -z_eye; background 0")
         .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)")
-        .output_texture("line_id", "r32i", "line index per pixel, -1 on background (bind it to get it)", 1, 1.0f,
-                        /*optional=*/true)
+        .output_texture("line_id", "r32i", "line index per pixel, -1 on background (bind it to get it)",
+                        {.optional = true})
         .output_texture("edge", "rgba8",
                         "the nearer rim per pixel for edge_aa: rg = 0.5 + 0.5 * outward screen direction, b = distance "
                         "in pixels / 2 (clamped to 1), a = 0.2 + 0.2 * line width in px (clamped to 1), 0 on background (bind it "
                         "to get it)",
-                        1, 1.0f, /*optional=*/true);
+                        {.optional = true});
 }
 
 PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& doc) {

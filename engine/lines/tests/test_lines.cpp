@@ -334,6 +334,19 @@ TEST(lines, BrokenShaderNamesFileAndLine) {
         EXPECT_NE(msg.find((dir / "line_common.glsl").string() + ":" + std::to_string(line) + ":"), std::string::npos)
             << msg;
     }
+    {
+        // The LineKit uniform block out of step with lines::Drawer's struct: named, never drawn.
+        int line = copy_broken(src / "engine/lines/shaders/line_common.glsl", dir, "vec2 u_depth_range;",
+                               "    float u_inserted; vec2 u_depth_range;");
+        ASSERT_GT(line, 0);
+        for (const char* stage : {"line_kit.vert", "line_quad.geom"})  // every stage sees the edited block
+            fs::copy_file(src / "engine/lines/shaders" / stage, dir / stage, fs::copy_options::overwrite_existing);
+        ShaderPathGuard guard(dir.string());
+        std::string msg = render_error("isl.json");  // isl.frag includes line_common.glsl from the path
+        EXPECT_NE(msg.find("member u_depth_range of the LineKit block is at offset 144 in GLSL but 136"),
+                  std::string::npos)
+            << msg;
+    }
     fs::remove_all(dir);
 }
 

@@ -157,6 +157,7 @@ std::string PassTypeInfo::describe() const {
         if (p.type == ParamType::Int || p.type == ParamType::Float)
             if (std::isfinite(p.min) || std::isfinite(p.max)) s << ", range " << range_text(p);
         if (p.type == ParamType::Enum) s << ", one of " << join(p.choices);
+        if (p.pixels) s << ", pixels";
         s << ")\n      " << p.doc << "\n";
     }
     s << "\ninputs:\n";
@@ -171,7 +172,7 @@ std::string PassTypeInfo::describe() const {
     s << "\noutputs:\n";
     any = false;
     for (const auto& p : pins)
-        if (p.dir == PinDir::Output) {
+        if (p.dir == PinDir::Output && !p.internal) {
             any = true;
             s << "  " << p.name << " (";
             if (p.kind == PinKind::Texture) {
@@ -187,6 +188,15 @@ std::string PassTypeInfo::describe() const {
             s << ")\n      " << p.doc << "\n";
         }
     if (!any) s << "  (none)\n";
+    any = false;
+    for (const auto& p : pins)
+        if (p.internal) {
+            if (!any) s << "\ninternal (the pass's own textures: allocated and pooled by the engine, not bound in graphs):\n";
+            any = true;
+            s << "  " << p.name << " (texture " << p.format;
+            if (p.scale != 1.0f) s << ", " << p.scale << "x output size";
+            s << ")\n      " << p.doc << "\n";
+        }
     return s.str();
 }
 
@@ -221,13 +231,15 @@ std::string PassTypeInfo::markdown() const {
         if ((p.type == ParamType::Int || p.type == ParamType::Float) && (std::isfinite(p.min) || std::isfinite(p.max)))
             range = range_text(p);
         if (p.type == ParamType::Enum) range = join(p.choices);
+        if (p.pixels) range += range.empty() ? "pixels" : ", pixels";
         s << "| `" << p.name << "` | " << to_string(p.type) << " | `" << md_cell(p.def.dump()) << "` | " << md_cell(range)
           << " | " << md_cell(p.doc) << " |\n";
     }
     if (params.empty()) s << "| (none) | | | | |\n";
     s << "\n| pin | direction | kind, format | meaning |\n|---|---|---|---|\n";
     for (const auto& p : pins)
-        s << "| `" << p.name << "` | " << (p.dir == PinDir::Input ? "in" : "out") << (p.optional ? " (optional)" : "")
+        s << "| `" << p.name << "` | " << (p.internal ? "internal" : p.dir == PinDir::Input ? "in" : "out")
+          << (p.optional ? " (optional)" : "")
           << " | " << md_pin_shape(p) << " | " << md_cell(p.doc) << " |\n";
     return s.str();
 }
@@ -252,19 +264,26 @@ PassTypeBuilder& PassTypeBuilder::param_bool(const std::string& name, bool def, 
     info_.params.push_back(make_param(name, ParamType::Bool, def, doc));
     return *this;
 }
-PassTypeBuilder& PassTypeBuilder::param_int(const std::string& name, int def, int min, int max, const std::string& doc) {
+PassTypeBuilder& PassTypeBuilder::param_int(const std::string& name, int def, int min, int max, const std::string& doc,
+                                            ParamOptions o) {
     auto p = make_param(name, ParamType::Int, def, doc);
     p.min = min;
     p.max = max;
+    p.pixels = o.pixels;
     info_.params.push_back(p);
     return *this;
 }
 PassTypeBuilder& PassTypeBuilder::param_float(const std::string& name, double def, double min, double max,
-                                              const std::string& doc) {
+                                              const std::string& doc, ParamOptions o) {
     auto p = make_param(name, ParamType::Float, def, doc);
     p.min = min;
     p.max = max;
+    p.pixels = o.pixels;
     info_.params.push_back(p);
+    return *this;
+}
+PassTypeBuilder& PassTypeBuilder::param(ParamDecl d) {
+    info_.params.push_back(std::move(d));
     return *this;
 }
 PassTypeBuilder& PassTypeBuilder::param_enum(const std::string& name, const std::string& def,
@@ -288,53 +307,48 @@ PassTypeBuilder& PassTypeBuilder::param_color(const std::string& name, glm::vec3
     return *this;
 }
 
-PassTypeBuilder& PassTypeBuilder::input_texture(const std::string& name, const std::string& format,
-                                                const std::string& doc, bool optional) {
+namespace {
+PinDecl make_pin(const std::string& name, PinDir dir, PinKind kind, const std::string& format, const std::string& doc,
+                 PinOptions o) {
     PinDecl p;
     p.name = name;
-    p.dir = PinDir::Input;
-    p.kind = PinKind::Texture;
+    p.dir = dir;
+    p.kind = kind;
     p.format = format;
-    p.optional = optional;
+    p.optional = o.optional;
+    p.mips = o.mips;
+    p.scale = o.scale;
     p.doc = doc;
-    info_.pins.push_back(p);
+    return p;
+}
+}  // namespace
+
+PassTypeBuilder& PassTypeBuilder::input_texture(const std::string& name, const std::string& format,
+                                                const std::string& doc, PinOptions o) {
+    info_.pins.push_back(make_pin(name, PinDir::Input, PinKind::Texture, format, doc, o));
     return *this;
 }
 PassTypeBuilder& PassTypeBuilder::output_texture(const std::string& name, const std::string& format,
-                                                 const std::string& doc, int mips, float scale, bool optional) {
-    PinDecl p;
-    p.optional = optional;
-    p.name = name;
-    p.dir = PinDir::Output;
-    p.kind = PinKind::Texture;
-    p.format = format;
-    p.mips = mips;
-    p.scale = scale;
-    p.doc = doc;
+                                                 const std::string& doc, PinOptions o) {
+    info_.pins.push_back(make_pin(name, PinDir::Output, PinKind::Texture, format, doc, o));
+    return *this;
+}
+PassTypeBuilder& PassTypeBuilder::internal_texture(const std::string& name, const std::string& format,
+                                                   const std::string& doc, PinOptions o) {
+    o.optional = false;  // always there: the pass's own
+    PinDecl p = make_pin(name, PinDir::Output, PinKind::Texture, format, doc, o);
+    p.internal = true;
     info_.pins.push_back(p);
     return *this;
 }
-PassTypeBuilder& PassTypeBuilder::input_buffer(const std::string& name, const std::string& doc, bool optional) {
-    PinDecl p;
-    p.name = name;
-    p.dir = PinDir::Input;
-    p.kind = PinKind::Buffer;
-    p.format = "";
-    p.optional = optional;
-    p.doc = doc;
-    info_.pins.push_back(p);
+PassTypeBuilder& PassTypeBuilder::input_buffer(const std::string& name, const std::string& doc, PinOptions o) {
+    info_.pins.push_back(make_pin(name, PinDir::Input, PinKind::Buffer, "", doc, o));
     return *this;
 }
-PassTypeBuilder& PassTypeBuilder::output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
-                                                const std::string& doc) {
-    PinDecl p;
-    p.name = name;
-    p.dir = PinDir::Output;
-    p.kind = PinKind::Buffer;
-    p.format = "";
-    p.bytes = bytes;
-    p.bytes_per_pixel = bytes_per_pixel;
-    p.doc = doc;
+PassTypeBuilder& PassTypeBuilder::output_buffer(const std::string& name, const std::string& doc, BufferSize size) {
+    PinDecl p = make_pin(name, PinDir::Output, PinKind::Buffer, "", doc, {});
+    p.bytes = size.bytes;
+    p.bytes_per_pixel = size.bytes_per_pixel;
     info_.pins.push_back(p);
     return *this;
 }
@@ -351,6 +365,15 @@ bool Params::b(const std::string& n) const { return at(n).get<bool>(); }
 int Params::i(const std::string& n) const { return static_cast<int>(at(n).get<double>()); }
 float Params::f(const std::string& n) const { return static_cast<float>(at(n).get<double>()); }
 std::string Params::s(const std::string& n) const { return at(n).get<std::string>(); }
+int Params::index(const std::string& n) const {
+    const std::string v = s(n);
+    const ParamDecl* d = type_ ? type_->param(n) : nullptr;
+    if (!d || d->type != ParamType::Enum)
+        throw std::logic_error("pass '" + pass_ + "' asked for the choice index of '" + n + "', which is not an enum");
+    for (size_t i = 0; i < d->choices.size(); ++i)
+        if (d->choices[i] == v) return int(i);
+    throw std::logic_error("pass '" + pass_ + "': '" + v + "' is not a choice of '" + n + "'");
+}
 glm::vec3 Params::v3(const std::string& n) const {
     const json& j = at(n);
     return {j.at(0).get<float>(), j.at(1).get<float>(), j.at(2).get<float>()};

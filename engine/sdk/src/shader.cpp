@@ -4,6 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -169,17 +170,103 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
         throw ShaderError("GLSL link error in program (" + list + "):\n" + log.c_str());
     }
+    prog.reflect();
     return prog;
 }
 
+namespace {
+bool is_image(GLenum t) {
+    switch (t) {
+        case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_BUFFER: case GL_IMAGE_2D_ARRAY:
+        case GL_INT_IMAGE_2D: case GL_INT_IMAGE_3D: case GL_INT_IMAGE_BUFFER: case GL_INT_IMAGE_2D_ARRAY:
+        case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D: case GL_UNSIGNED_INT_IMAGE_BUFFER:
+        case GL_UNSIGNED_INT_IMAGE_2D_ARRAY: return true;
+        default: return false;
+    }
+}
+bool is_sampler(GLenum t) {
+    switch (t) {
+        case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_ARRAY:
+        case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_MULTISAMPLE:
+        case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D: case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_ARRAY:
+        case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
+        case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: return true;
+        default: return false;
+    }
+}
+}  // namespace
+
+// Active uniforms of the default block; samplers and images get units 0, 1, ... each in
+// GL's order (what a layout(binding) in the source said is replaced: units are the engine's).
+void ShaderProgram::reflect() {
+    uniforms_.clear();
+    GLint count = 0;
+    glGetProgramInterfaceiv(id_, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    int samplers = 0, images = 0;
+    for (GLint i = 0; i < count; ++i) {
+        const GLenum props[] = {GL_NAME_LENGTH, GL_TYPE, GL_ARRAY_SIZE, GL_LOCATION, GL_BLOCK_INDEX};
+        GLint v[5] = {};
+        glGetProgramResourceiv(id_, GL_UNIFORM, GLuint(i), 5, props, 5, nullptr, v);
+        if (v[4] != -1) continue;  // a block member: set through its buffer
+        std::string name(size_t(std::max(v[0], 1)), '\0');
+        glGetProgramResourceName(id_, GL_UNIFORM, GLuint(i), v[0], nullptr, name.data());
+        name.resize(std::strlen(name.c_str()));
+        if (name.size() > 3 && name.compare(name.size() - 3, 3, "[0]") == 0) name.resize(name.size() - 3);
+        Uniform u{name, GLenum(v[1]), v[2], v[3]};
+        u.image = is_image(u.type);
+        u.opaque = u.image || is_sampler(u.type);
+        if (u.opaque) {
+            u.unit = u.image ? images++ : samplers++;
+            glProgramUniform1i(id_, u.location, u.unit);
+        }
+        uniforms_.push_back(u);
+    }
+}
+
+const ShaderProgram::Uniform* ShaderProgram::uniform(const std::string& name) const {
+    for (const auto& u : uniforms_)
+        if (u.name == name) return &u;
+    return nullptr;
+}
+
+void ShaderProgram::set_unit(const std::string& name, int unit) {
+    for (auto& u : uniforms_)
+        if (u.name == name && u.opaque) {
+            u.unit = unit;
+            glProgramUniform1i(id_, u.location, unit);
+            return;
+        }
+}
+
+const ShaderProgram::Uniform& ShaderProgram::opaque_uniform(const std::string& name) const {
+    static const Uniform inactive;
+    if (const Uniform* u = uniform(name)) {
+        if (u->opaque) return *u;
+        throw ShaderError("program (" + files_ + "): '" + name + "' is not a sampler or image");
+    }
+    loc(name);  // throws for a name no source declares (a typo)
+    return inactive;
+}
+
+void ShaderProgram::bind_texture(const std::string& name, GLuint texture) const {
+    const Uniform& u = opaque_uniform(name);
+    if (u.unit >= 0) glBindTextureUnit(GLuint(u.unit), texture);
+}
+
+void ShaderProgram::bind_image(const std::string& name, GLuint texture, GLenum format, GLenum access, int level) const {
+    const Uniform& u = opaque_uniform(name);
+    if (u.unit >= 0) glBindImageTexture(GLuint(u.unit), texture, level, GL_FALSE, 0, access, format);
+}
+
 ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept
-    : id_(o.id_), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)) {
+    : id_(o.id_), uniforms_(std::move(o.uniforms_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)) {
     o.id_ = 0;
 }
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
     if (this != &o) {
         if (id_) glDeleteProgram(id_);
         id_ = o.id_;
+        uniforms_ = std::move(o.uniforms_);
         locs_ = std::move(o.locs_);
         declared_ = std::move(o.declared_);
         files_ = std::move(o.files_);

@@ -31,8 +31,11 @@
 
 namespace pathlet::lines {
 
-// Shader storage binding the kit uses for its per-pathlet buffer; passes use other points.
+// Binding points of the kit's buffers (passes use other points): the per-pathlet shader storage
+// buffer and the uniform block LineKit. Programs made by lines::program() get them as the
+// defines LINE_PATHLET_BINDING and LINE_KIT_BINDING, so GLSL never repeats the numbers.
 constexpr GLuint kPathletBinding = 7;
+constexpr GLuint kKitBlockBinding = 7;
 
 // GLSL hook files, found on the shader path (the pass's own folder first). Empty: the kit's
 // default (full width; the colour map as it is).
@@ -88,6 +91,7 @@ private:
     std::vector<glm::vec4> pathlets_;
     GLuint buffer_ = 0;
     size_t capacity_ = 0;
+    GLuint block_ = 0;  // the LineKit uniform block's buffer
 };
 
 // The end fade of a pathlet (engine/lines/shaders/line_fade.glsl: float line_end_fade(LinePoint)), shared

@@ -5,6 +5,8 @@
 #include <pathlet/gl.hpp>
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 namespace pathlet::oit {
 
@@ -12,6 +14,11 @@ constexpr GLuint kEnd = 0xFFFFFFFFu;      // empty list / last node (OIT_END)
 constexpr size_t kNodeBytes = 16;         // uvec4: colour, depth, next, line id
 constexpr GLuint kCounterBinding = 8;     // OIT_COUNTER_BINDING: std430 { uint count; }
 
+// The constants above for oit_list.glsl: add them to the defines of every program that
+// includes it, so GLSL never repeats a number.
+inline std::vector<std::string> defines() {
+    return {"OIT_END " + std::to_string(kEnd) + "u", "OIT_COUNTER_BINDING " + std::to_string(kCounterBinding)};
+}
 // Empties every list: heads to kEnd, the node counter to 0.
 inline void clear_lists(GLuint heads_texture, GLuint counter_buffer) {
     glClearTexImage(heads_texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &kEnd);

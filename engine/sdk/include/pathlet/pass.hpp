@@ -1,6 +1,8 @@
 // The pass contract. A pass type declares its parameters and pins ONCE (PassTypeBuilder);
-// that declaration drives graph validation, `--set` overrides, `pathlet passes --describe`
-// and the docs. The instance then implements setup() (shaders, GL objects) and execute().
+// that declaration drives graph validation, `--set` overrides, `pathlet passes --describe`,
+// the viewer's panels and the docs, and it binds: a parameter `radius` reaches every program
+// of the pass as its uniform `u_radius`, a texture pin `ao` as its sampler (or image) `u_ao`.
+// The instance then implements setup() (shaders, GL objects) and execute().
 #pragma once
 
 #include <pathlet/gl.hpp>
@@ -31,6 +33,7 @@ struct ParamDecl {
     double max = std::numeric_limits<double>::infinity();
     std::vector<std::string> choices;                // Enum only
     std::string doc;
+    bool pixels = false;  // a length in picture pixels: bound as u_<name> times the pixel scale
 
     // Checks and converts a JSON value (ints accepted for floats, "#rrggbb" for colours).
     // Returns an error message, or "" and sets `out`.
@@ -39,8 +42,29 @@ struct ParamDecl {
     std::string coerce_text(const std::string& text, json& out) const;
 };
 
+// How a parameter is bound (the trailing argument of the builder's param_* calls).
+struct ParamOptions {
+    // A length in picture pixels (a radius, a band): u_<name> gets it times the render's pixel
+    // scale, so `render --ssaa N` looks the same (ints are rounded).
+    bool pixels = false;
+};
+
 enum class PinKind { Texture, Buffer };
 enum class PinDir { Input, Output };
+
+// The shape of a pin (the trailing argument of the builder's pin calls):
+//   .input_texture("pyramid", "rgba16f", "...", {.optional = true})
+//   .output_texture("pyramid", "rgba16f", "...", {.mips = 0})
+struct PinOptions {
+    bool optional = false;  // may stay unconnected; the pass asks connected()
+    int mips = 1;           // outputs and internal textures: mip levels; 0 = full chain
+    float scale = 1.0f;     // outputs and internal textures: size = scale x output size
+};
+// The size of a buffer output.
+struct BufferSize {
+    size_t bytes = 0;            // fixed size, or ...
+    size_t bytes_per_pixel = 0;  // ... proportional to the output's pixel count
+};
 
 struct PinDecl {
     std::string name;
@@ -53,6 +77,8 @@ struct PinDecl {
     size_t bytes_per_pixel = 0;  // ... size proportional to the output's pixel count
     bool optional = false;       // may stay unconnected; an unconnected optional output gets no
                                  // resource (connected() is false), a required one an implicit one
+    bool internal = false;       // the pass's own texture (an output no graph may bind): the engine
+                                 // allocates and pools it like any transient, the pass uses it by name
     std::string doc;
 };
 
@@ -78,22 +104,33 @@ class PassTypeBuilder {
 public:
     PassTypeBuilder(std::string type, std::string doc);
 
+    // Parameters: u_<name> in every program of the pass (bool and int as int, enum as the index
+    // of its choice, vec3 and color as vec3; strings are not bound).
     PassTypeBuilder& param_bool(const std::string& name, bool def, const std::string& doc);
-    PassTypeBuilder& param_int(const std::string& name, int def, int min, int max, const std::string& doc);
-    PassTypeBuilder& param_float(const std::string& name, double def, double min, double max, const std::string& doc);
+    PassTypeBuilder& param_int(const std::string& name, int def, int min, int max, const std::string& doc,
+                               ParamOptions o = {});
+    PassTypeBuilder& param_float(const std::string& name, double def, double min, double max, const std::string& doc,
+                                 ParamOptions o = {});
     PassTypeBuilder& param_enum(const std::string& name, const std::string& def, std::vector<std::string> choices,
                                 const std::string& doc);
     PassTypeBuilder& param_string(const std::string& name, const std::string& def, const std::string& doc);
     PassTypeBuilder& param_vec3(const std::string& name, glm::vec3 def, const std::string& doc);
     PassTypeBuilder& param_color(const std::string& name, glm::vec3 def, const std::string& doc);
+    // Any parameter, e.g. one reflected from a shader.
+    PassTypeBuilder& param(ParamDecl d);
 
+    // Pins: a texture pin `x` is bound to the sampler or image `u_x` of every program of the pass
+    // before each execute().
     PassTypeBuilder& input_texture(const std::string& name, const std::string& format, const std::string& doc,
-                                   bool optional = false);
+                                   PinOptions o = {});
     PassTypeBuilder& output_texture(const std::string& name, const std::string& format, const std::string& doc,
-                                    int mips = 1, float scale = 1.0f, bool optional = false);
-    PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, bool optional = false);
-    PassTypeBuilder& output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
-                                   const std::string& doc);
+                                    PinOptions o = {});
+    // A texture only this pass uses (a separable filter's intermediate, a half-resolution term):
+    // never bound in a graph, allocated and pooled by the engine, `ctx.texture(name)` as any pin.
+    PassTypeBuilder& internal_texture(const std::string& name, const std::string& format, const std::string& doc,
+                                      PinOptions o = {});
+    PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, PinOptions o = {});
+    PassTypeBuilder& output_buffer(const std::string& name, const std::string& doc, BufferSize size);
 
     // The pass does work outside the graph (writes files): the compiler never culls it.
     PassTypeBuilder& side_effect() {
@@ -117,18 +154,29 @@ private:
 class Params {
 public:
     Params() = default;
-    Params(std::string pass, json values) : pass_(std::move(pass)), v_(std::move(values)) {}
+    Params(std::string pass, json values, const PassTypeInfo* type = nullptr)
+        : pass_(std::move(pass)), v_(std::move(values)), type_(type) {}
     bool b(const std::string& n) const;
     int i(const std::string& n) const;
     float f(const std::string& n) const;
     std::string s(const std::string& n) const;
     glm::vec3 v3(const std::string& n) const;
+    // An enum parameter as the index of its choice, or as your enum whose values follow the
+    // declared choices: `enum class Mode { gaussian, box }; p.e<Mode>("mode")`.
+    int index(const std::string& n) const;
+    template <class E>
+    E e(const std::string& n) const {
+        return static_cast<E>(index(n));
+    }
     const json& raw() const { return v_; }
+    const PassTypeInfo* type() const { return type_; }
 
 private:
+    friend class Executor;
     const json& at(const std::string& n) const;
     std::string pass_;
     json v_;
+    const PassTypeInfo* type_ = nullptr;  // set by the engine: choices for index()
 };
 
 struct Texture {
@@ -177,7 +225,13 @@ public:
     const GpuScene& scene() const;
     // Compiles (once, cached) a program from shader files found on the shader search path
     // (the pass's own folder first). Compile errors throw and name the file and line.
+    // The program is bound by declaration: its uniforms u_<param> hold the pass's parameters
+    // (again after every parameter change, before setup() runs), its samplers and images
+    // u_<pin> the pins' textures (bound before each execute()). A uniform of that name whose
+    // type does not fit the parameter is an error. Set what you derive yourself after that.
     ShaderProgram& program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+    // Sets u_<param> on a program made elsewhere (program() does this for its own).
+    void bind_params(const ShaderProgram& prog) const;
 
     // Binds a framebuffer whose colour attachments are the given output pins (in order, as
     // locations 0..n-1) and optional depth pin, and sets the viewport to their size.
@@ -206,6 +260,12 @@ protected:
     PassContextImpl* impl_;
 };
 
+// GL state at the start of setup() and execute(), whatever the previous pass left: no program,
+// vertex array or framebuffer bound (draw framebuffer 0), viewport = output size; depth test,
+// blending, face culling, scissor and stencil test off; depth function LESS, depth writes on,
+// colour writes on, blend function (ONE, ZERO); the pass's texture pins bound to the units of
+// their u_<pin> samplers (and images), nothing else bound. A pass changes what it needs and
+// need not restore it.
 class Pass {
 public:
     virtual ~Pass() = default;

@@ -35,6 +35,28 @@ public:
 
     GLuint id() const { return id_; }
     void use() const { glUseProgram(id_); }
+
+    // What the linked program has, read back from GL (active uniforms outside blocks).
+    struct Uniform {
+        std::string name;  // "u_x"; arrays without "[0]"
+        GLenum type = 0;   // GL_FLOAT, GL_FLOAT_VEC3, GL_SAMPLER_2D, GL_UNSIGNED_INT_IMAGE_2D, ...
+        GLint size = 1;    // array length
+        GLint location = -1;
+        bool opaque = false;  // a sampler or an image: it has a unit
+        bool image = false;
+        int unit = -1;        // samplers: texture unit; images: image unit
+    };
+    const std::vector<Uniform>& uniforms() const { return uniforms_; }
+    const Uniform* uniform(const std::string& name) const;  // nullptr if not active
+    // Gives the sampler or image `name` a unit (glProgramUniform1i). Units start as 0, 1, 2, ...
+    // over the opaque uniforms in GL's order; a pass's context gives u_<pin> the pin's unit.
+    void set_unit(const std::string& name, int unit);
+    // Binds a texture to the unit of sampler `name` (no-op when the sampler is optimised away).
+    // Throws naming the program when the program declares no such sampler (a typo).
+    void bind_texture(const std::string& name, GLuint texture) const;
+    // Binds level `level` of a texture to the unit of image `name` with `format` (e.g. GL_R32UI).
+    void bind_image(const std::string& name, GLuint texture, GLenum format, GLenum access = GL_READ_WRITE,
+                    int level = 0) const;
     // Cached; -1 if declared but optimised away. A name no source of the program declares
     // (a typo: "u_tial") throws ShaderError naming the program's files and the uniform.
     GLint loc(const std::string& uniform) const;
@@ -48,7 +70,10 @@ public:
     void set(const std::string& n, const glm::mat4& v) const;
 
 private:
+    void reflect();
+    const Uniform& opaque_uniform(const std::string& name) const;
     GLuint id_ = 0;
+    std::vector<Uniform> uniforms_;
     mutable std::map<std::string, GLint> locs_;
     std::set<std::string> declared_;  // uniform names found in the expanded sources
     std::string files_;               // "a.vert, b.geom, c.frag", for messages
