@@ -2,6 +2,7 @@
 
 #include "formats.hpp"
 #include "gl_context.hpp"
+#include "graph/hook_params.hpp"
 #include "image_io.hpp"
 #include "plugin_host.hpp"
 #include "profiler/profiler.hpp"
@@ -252,19 +253,7 @@ Executor::~Executor() {
 }
 
 std::vector<std::string> Executor::shader_dirs_for(const PassTypeInfo& type) const {
-    std::vector<std::string> dirs;
-    if (const char* env = std::getenv("PATHLET_SHADER_PATH")) {
-        std::stringstream s(env);
-        std::string d;
-        while (std::getline(s, d, ':'))
-            if (!d.empty()) dirs.push_back(d);
-    }
-    if (!type.plugin_file.empty()) {
-        fs::path so(type.plugin_file);
-        dirs.push_back((so.parent_path() / so.stem()).string());  // <plugin dir>/<plugin>/ (installed shaders)
-    }
-    dirs.push_back((fs::path(engine_share_dir()) / "shaders").string());
-    return dirs;
+    return shader_search_path(type, cg_.dirs);
 }
 
 Executor::Physical Executor::make_physical(const PoolSlot& s, const std::string& full_label) {
@@ -387,10 +376,13 @@ void Executor::setup() {
             reset_gl_state();
             pass->setup(ctx);
         } catch (const ShaderError& e) {
+            gl_.take_errors();  // the compile's own debug messages: reported here, not by the next frame
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + "): " + e.what());
         } catch (const std::exception& e) {
+            gl_.take_errors();
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
         } catch (...) {
+            gl_.take_errors();
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") threw a non-standard exception in setup");
         }
         check_gl(cp.name, "setup");
@@ -417,6 +409,7 @@ void Executor::reparam(size_t i) {
     try {
         set_up();
     } catch (const std::exception& e) {
+        gl_.take_errors();  // the failed setup's own messages
         impl.params = old;  // back to what worked, set up again
         try {
             set_up();

@@ -28,8 +28,7 @@ public:
     }
 
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &lines::program(ctx, {"fill_list.frag"}, {}, oit::defines());
-        fade_.setup(ctx);
+        prog_ = &lines::program(ctx, {"fill_list.frag"}, lines::hooks(ctx), oit::defines());
         GLint max_texels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
         const size_t cap_bytes = size_t(ctx.params().f("max_memory_mb") * 1024.0 * 1024.0);
@@ -109,7 +108,6 @@ private:
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, oit::kCounterBinding, counter);
         prog_->use();
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
-        fade_.set_uniforms(ctx, *prog_);
         drawer_.draw(ctx, *prog_);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
@@ -121,7 +119,6 @@ private:
 
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    lines::EndFade fade_;
     GLuint fbo_ = 0, view_ = 0, viewed_ = 0;
     bool coverage_ = false;
     size_t max_nodes_ = 1;
@@ -130,10 +127,9 @@ private:
 
 pathlet::PassTypeInfo fill_list_type() {
     pathlet::PassTypeBuilder b("fill_list",
-                               "variant 2: pathlet fragments into per-pixel linked lists (OIT), opacity faded at "
-                               "both ends; the node buffer grows on overflow");
-    lines::declare_params(b);
-    lines::declare_fade_params(b, 0.5, 0.15, "opacity")
+                               "variant 2: pathlet fragments into per-pixel linked lists (OIT) with the opacity of "
+                               "their colour hook (by default the kit's end fade); the node buffer grows on overflow");
+    lines::declare_params(b, {.color = "fade_opacity.frag"})
         .param_float("nodes_per_pixel", 4.0, 0.01, 1024.0,
                      "initial node capacity per output pixel (16 bytes a node); grown automatically on overflow")
         .param_float("max_memory_mb", 1024.0, 0.01, 65536.0,

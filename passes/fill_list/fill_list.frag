@@ -1,15 +1,14 @@
 #version 450 core
 // fill_list's fragment stage: every fragment of a pathlet quad becomes a node of its pixel's
 // linked list (seed §III.b: take a node index from the counter, swap it into the head, link
-// the old head), with its colour (speed map, colour hook, halo), its opacity faded at both
-// ends of the pathlet (engine/lines/shaders/line_fade.glsl) and by its edge coverage, its linear depth and
-// its line id.
+// the old head), with its colour (speed map, colour hook, halo), the opacity of its colour hook
+// (by default the kit's end fade, fade_opacity.frag) times its edge coverage, its linear depth
+// and its line id.
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
-#include "line_fade.glsl"
 #include "oit_list.glsl"
 
-vec4 line_color_hook(vec4 rgba, LinePoint p);  // the kit's hook (default: the colour as it is)
+vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_hook)
 
 layout(r32ui) uniform coherent uimage2D u_heads;            // the pin, by declaration
 layout(rgba32ui) uniform writeonly uimageBuffer u_nodes;    // the pass's view of the `nodes` buffer
@@ -20,7 +19,7 @@ void main() {
     LineFrag f = line_fragment();
     vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
     // Analytic edge coverage: the rim's last pixel is as opaque as the share of it the quad covers.
-    float a = c.a * line_end_fade(f.point) * clamp(0.5 + f.rim_px, 0.0, 1.0);
+    float a = c.a * clamp(0.5 + f.rim_px, 0.0, 1.0);
     if (a < 0.5 / 255.0) discard;  // invisible: no node
     uint i = atomicAdd(oit_count, 1u);
     if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room

@@ -21,7 +21,7 @@ public:
             defines.push_back(d);
         for (const auto& d : pathlet::whole_exponent("ISL_DIFFUSE_EXPONENT", ctx.params().f("diffuse_exponent")))
             defines.push_back(d);
-        prog_ = &lines::program(ctx, {"isl.frag"}, {}, defines);
+        prog_ = &lines::program(ctx, {"isl.frag"}, lines::hooks(ctx), defines);
     }
 
     void execute(pathlet::PassContext& ctx) override {

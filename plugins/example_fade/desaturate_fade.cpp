@@ -5,20 +5,12 @@
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
-namespace {
-
-class DesaturateFade : public pathlet::lines::GBufferPass {
-public:
-    DesaturateFade() : GBufferPass({.color = "desaturate_color.frag"}) {}
-};
-
-}  // namespace
-
 PATHLET_PLUGIN("desaturate_fade", {
     sink->add(pathlet::lines::gbuffer_pass_type("desaturate_fade",
-                                                "pathlets fade to grey with age (an out-of-tree example fade)")
+                                                "pathlets fade to grey with age (an out-of-tree example fade)",
+                                                {.color = "desaturate_color.frag"})
                   .param_float("start", 0.3, 0.0, 1.0, "age where the fade begins (0 = the head, 1 = the tail)")
                   .param_color("grey", {0.75f, 0.75f, 0.75f}, "colour a pathlet's tail fades to")
                   .param_bool("dither", false, "also fade out by screen-door opacity (the kit dithers alpha)")
-                  .make<DesaturateFade>());
+                  .make<pathlet::lines::GBufferPass>());
 })

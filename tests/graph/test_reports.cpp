@@ -100,7 +100,7 @@ TEST(Schema, ShippedSchemaDescribesTheFormat) {
     json schema = json::parse(s.str());
     EXPECT_EQ(schema["$schema"], "https://json-schema.org/draft/2020-12/schema");
     EXPECT_EQ(schema["additionalProperties"], false);
-    for (const char* k : {"$schema", "version", "name", "description", "variables", "resources", "passes", "outputs"})
+    for (const char* k : {"$schema", "version", "name", "description", "variables", "resources", "passes", "outputs", "extends"})
         EXPECT_TRUE(schema["properties"].contains(k)) << k;
     EXPECT_TRUE(schema["properties"]["description"].contains("description"));
     // The schema's format list is the engine's.

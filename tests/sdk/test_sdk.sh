@@ -34,7 +34,17 @@ cmake -S "$SRC/plugins/example_fade" -B "$WORK/fade" -DCMAKE_PREFIX_PATH="$WORK/
       -DCMAKE_BUILD_TYPE=Release >"$WORK/fade-configure.log"
 cmake --build "$WORK/fade" >"$WORK/fade-build.log"
 "$PATHLET" passes --describe desaturate_fade --plugin-dir "$WORK/fade" | grep -q "start (float"
-"$PATHLET" render "$SRC/plugins/example_fade/desaturate_demo.json" --plugin-dir "$WORK/fade" \
+# It replaces variant 1's gbuffer pass through a graph that extends the installed variant 1.
+"$PATHLET" render "$SRC/plugins/example_fade/desaturate_v1.json" --plugin-dir "$WORK/fade" \
   --data "$SRC/tests/engine/data/two_lines.vtk" --time 1 --size 96x64 --out "$WORK/out" --quiet >"$WORK/fade-render.log"
-test -s "$WORK/out/desaturate_demo/00000.png"
-echo "sdk: installed, built both example plugins out of tree, rendered with them"
+test -s "$WORK/out/desaturate_v1/00000.png"
+
+# The GLSL route: a fade strategy as one file, no build, in graphs extending variants 1 and 2.
+for g in speed_fade_v1 speed_fade_oit; do
+  "$PATHLET" render "$SRC/plugins/example_fade/$g.json" --data "$SRC/tests/engine/data/two_lines.vtk" --time 1 \
+    --size 96x64 --out "$WORK/out" --quiet >"$WORK/$g.log"
+  test -s "$WORK/out/$g/00000.png"
+done
+"$PATHLET" passes --describe fill_list >"$WORK/fill_list.txt"  # (grep -q on a pipe: SIGPIPE under pipefail)
+grep -q "tail_fade (float, default 0.5, range \[0, 1\], from line_fade.glsl)" "$WORK/fill_list.txt"
+echo "sdk: installed, built both example plugins out of tree, rendered with them and with the GLSL fade strategy"

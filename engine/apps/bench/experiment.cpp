@@ -97,6 +97,9 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
             c.keys(gs[i], p, {"graph", "label", "set"});
             if (!gs[i].contains("graph")) c.fail(p, "missing 'graph' (a graph file or shipped name)");
             g.graph = c.str(gs[i]["graph"], p + "/graph");
+            // A graph file is found beside the experiment file (a shipped name stays a name).
+            const std::filesystem::path gp(g.graph), here = std::filesystem::path(origin).parent_path();
+            if (gp.extension() == ".json" && gp.is_relative() && !here.empty()) g.graph = (here / gp).string();
             if (gs[i].contains("label")) g.label = c.str(gs[i]["label"], p + "/label");
             if (gs[i].contains("set")) g.sets = c.sets(gs[i]["set"], p + "/set");
         }

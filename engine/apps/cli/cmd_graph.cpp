@@ -19,12 +19,15 @@ int run(const std::vector<std::string>& argv) {
     a.positional("GRAPH", "graph file (or the name of a shipped graph, e.g. variant1_lineao)")
         .flag("plan", "print the plan as text (the default)")
         .flag("json", "print the plan as JSON")
+        .flag("expanded", "print the graph as one JSON document: the graphs it extends merged in (the document "
+                          "error pointers refer to)")
         .option("dot", "FILE", "", "write Graphviz DOT to FILE ('-' for stdout); render with: dot -Tsvg FILE -o g.svg")
         .option("size", "WxH", "1280x720", "output size the plan is computed for")
         .multi("set", "NAME=VALUE", "override a variable or pass parameter")
         .multi("plugin-dir", "DIR", "also load plugins from DIR")
         .example("pathlet graph variant1_lineao --plan", "order, lifetimes and memory of the LineAO graph")
-        .example("pathlet graph graphs/isl.json --dot isl.dot", "graph picture as DOT");
+        .example("pathlet graph graphs/isl.json --dot isl.dot", "graph picture as DOT")
+        .example("pathlet graph plugins/example_fade/speed_fade_v1.json --expanded", "a graph that extends variant 1, merged");
     if (!a.parse(argv)) return 0;
     glm::ivec2 size;
     try {
@@ -36,6 +39,10 @@ int run(const std::vector<std::string>& argv) {
     rt.load_plugins(a.all("plugin-dir"));
     std::string path = resolve_graph_path(a.pos("GRAPH"));
     try {
+        if (a.has("expanded")) {  // what the file stands for, before --set and validation
+            std::printf("%s\n", expanded_graph_json(path).dump(2).c_str());
+            return 0;
+        }
         GraphFile g = rt.load_graph(path, a.all("set"));
         CompiledGraph cg = compile_graph(g, rt.registry, size);
         if (a.has("dot")) {

@@ -2,12 +2,23 @@
 #include "args.hpp"
 #include "commands.hpp"
 #include "graph/graph_model.hpp"
+#include "graph/hook_params.hpp"
 #include "runtime.hpp"
 
 #include <cstdio>
 
 namespace pathlet::cli {
 namespace {
+
+// A type as a graph would see it with its default hooks: their @param uniforms included.
+std::shared_ptr<const PassTypeInfo> with_default_hooks(const PassTypeInfo& t) {
+    try {
+        return instance_type(t, json::object(), {});
+    } catch (const HookError& e) {
+        std::fprintf(stderr, "warning: %s: default hook: %s\n", t.type.c_str(), e.what());
+        return {&t, [](const PassTypeInfo*) {}};
+    }
+}
 
 int run(const std::vector<std::string>& argv) {
     Args a("passes", "Lists the pass types found on the plugin search path, with the file each comes from.");
@@ -30,12 +41,15 @@ int run(const std::vector<std::string>& argv) {
                          rt.plugin_problems_note().c_str());
             return 1;
         }
-        std::fputs((a.has("markdown") ? t->markdown() : t->describe()).c_str(), stdout);
+        const auto inst = with_default_hooks(*t);
+        std::fputs((a.has("markdown") ? inst->markdown() : inst->describe()).c_str(), stdout);
         return 0;
     }
     if (a.has("json")) {
         json out = json::array();
-        for (const auto* t : rt.registry.all()) {
+        for (const auto* reg_type : rt.registry.all()) {
+            const auto inst = with_default_hooks(*reg_type);
+            const PassTypeInfo* t = inst.get();
             json pt = {{"type", t->type}, {"doc", t->doc}, {"file", t->plugin_file}, {"params", json::array()}, {"pins", json::array()}};
             for (const auto& p : t->params)
                 pt["params"].push_back({{"name", p.name}, {"type", to_string(p.type)}, {"default", p.def}, {"doc", p.doc}});

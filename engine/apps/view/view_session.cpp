@@ -66,8 +66,17 @@ bool ViewSession::switch_graph(const std::string& path) {
 
 bool ViewSession::same_structure(const CompiledGraph& a, const CompiledGraph& b) const {
     if (a.passes.size() != b.passes.size() || a.resources.size() != b.resources.size()) return false;
+    // Types by name and parameter list: a pass's hook may bring parameters (each compile makes
+    // its own copy of such a type); another hook with the same parameters is a parameter change.
+    auto params_of = [](const PassTypeInfo& t) {
+        std::vector<std::string> n;
+        for (const auto& p : t.params) n.push_back(p.name);
+        return n;
+    };
     for (size_t i = 0; i < a.passes.size(); ++i)
-        if (a.passes[i].name != b.passes[i].name || a.passes[i].type != b.passes[i].type) return false;
+        if (a.passes[i].name != b.passes[i].name || a.passes[i].type->type != b.passes[i].type->type ||
+            params_of(*a.passes[i].type) != params_of(*b.passes[i].type))
+            return false;
     return plan_to_text(a) == plan_to_text(b);  // order, formats, sizes, lifetimes, pooling
 }
 

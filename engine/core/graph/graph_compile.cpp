@@ -45,6 +45,8 @@ CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::iv
     cg.file = g.path;
     cg.name = g.name;
     cg.output_size = output_size;
+    cg.dirs = g.dirs;
+    cg.instance_types = idx.instance_types;
     for (const auto& v : g.variables) cg.variables[v.name] = v.value;
 
     const size_t np = g.passes.size();

@@ -89,6 +89,13 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
         const PassDecl& p = g.passes[i];
         idx.pass_by_name.emplace(p.name, int(i));
         const PassTypeInfo* t = reg.find(p.type);
+        if (t) {  // with the parameters of its hook files
+            std::string err, at;
+            auto inst = pass_instance_type(g, p, *t, err, at);
+            if (!err.empty()) error(at, err);
+            t = inst.get();
+            idx.instance_types.push_back(std::move(inst));
+        }
         idx.types.push_back(t);
         if (!t) {
             error(p.pointer + "/type", "unknown pass type '" + p.type + "'" + did_you_mean(p.type, reg.names()) +

@@ -46,7 +46,8 @@ struct GraphIndex {
 
     const GraphFile* g = nullptr;
     const PassRegistry* reg = nullptr;
-    std::vector<const PassTypeInfo*> types;             // per pass; nullptr when the type is unknown
+    std::vector<const PassTypeInfo*> types;             // per pass (its instance type); nullptr when unknown
+    std::vector<std::shared_ptr<const PassTypeInfo>> instance_types;  // keeps types with hook parameters alive
     std::vector<ResourceDecl> resources;                // declared, then implicit "<pass>.<pin>"
     std::map<std::string, int> resource_by_name;
     std::map<std::string, int> pass_by_name;            // first pass of that name
@@ -72,6 +73,20 @@ std::vector<std::vector<int>> pass_dependencies(const GraphIndex& idx);
 
 // The checks of validate_graph over a built index.
 void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags);
+
+// The type of pass `p` of `g` (of registry type `t`): with the parameters its hook files declare
+// (hook_params.hpp). On a problem with a hook, `err` says what (and the pointer where) and the
+// registry's type is returned.
+std::shared_ptr<const PassTypeInfo> pass_instance_type(const GraphFile& g, const PassDecl& p, const PassTypeInfo& t,
+                                                       std::string& err, std::string& err_pointer);
+
+// ---- reading (graph_parse.cpp, graph_extends.cpp) -----------------------------------------
+// A graph file's JSON (comments allowed, nesting and size capped), errors placed by line.
+json graph_json_from_text(const std::string& text, const std::string& path);
+json read_graph_json(const std::string& path);
+// `root` (read from `path`) with its "extends" chain merged in; `dirs` gets the folders of the
+// file and its bases, `chain` the base files.
+json expand_extends(json root, const std::string& path, std::vector<std::string>& dirs, std::vector<std::string>& chain);
 
 // ---- values -----------------------------------------------------------------------------
 const VariableDecl* find_variable(const GraphFile& g, const std::string& name);

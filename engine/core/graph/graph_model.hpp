@@ -5,6 +5,7 @@
 #include <pathlet/pass.hpp>
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -86,6 +87,10 @@ struct GraphFile {
     std::vector<PassDecl> passes;
     std::vector<OutputDecl> outputs;
     std::vector<std::string> plugin_dirs;  // "plugin_dirs": folders of plugins, resolved against the file's folder
+    // The file's folder and those of the graphs it extends: hook files next to a graph are
+    // found there (after the shader path).
+    std::vector<std::string> dirs;
+    std::vector<std::string> extends;      // the chain of base graphs, nearest first (file paths)
 };
 
 // ---- compiled ---------------------------------------------------------------------------
@@ -111,6 +116,8 @@ struct Binding {
 
 struct CompiledPass {
     std::string name;
+    // The pass's type: the registry's, or its own copy with the parameters its hook files
+    // declare (kept alive by CompiledGraph::instance_types).
     const PassTypeInfo* type = nullptr;
     json params;                                 // resolved: defaults + graph + variables + --set
     std::map<std::string, Binding> bindings;     // pin -> resource
@@ -143,6 +150,8 @@ struct CompiledGraph {
     std::vector<OutputDecl> outputs;         // resource resolved to a name in `resources`
     size_t memory_unpooled = 0, memory_pooled = 0;
     json variables = json::object();         // resolved values, for reports
+    std::vector<std::string> dirs;           // GraphFile::dirs: where hook files next to the graph are
+    std::vector<std::shared_ptr<const PassTypeInfo>> instance_types;
 
     int find_resource(const std::string& name) const;
 };
@@ -152,6 +161,8 @@ struct CompiledGraph {
 // Parses a graph file (comments allowed). Syntax and structure errors -> GraphError.
 GraphFile parse_graph_file(const std::string& path);
 GraphFile parse_graph_json(const std::string& text, const std::string& path_for_messages);
+// The JSON a graph file stands for: with the graphs it extends merged in (graph --expanded).
+json expanded_graph_json(const std::string& path);
 
 // Applies "--set name=value" / "--set pass.param=value" overrides; problems go to `diags`.
 void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,

@@ -1,6 +1,9 @@
 // apply_overrides: "--set name=value" (graph variable) and "--set pass.param=value" (one pass's
-// parameter, read by the parameter's declared type). "--set pass.enabled=false" toggles a pass
-// whose type has no parameter of that name.
+// parameter, read by the parameter's declared type, the parameters its hook files declare
+// included). "--set pass.enabled=false" toggles a pass and "--set pass.type=TYPE" replaces its
+// type (the parameters it had stay and are validated against the new type), unless the type
+// has a parameter of that name. Overrides apply in order: a hook set first declares the
+// parameters a later --set may give.
 #include "graph_internal.hpp"
 
 #include <algorithm>
@@ -56,11 +59,26 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
             error("/passes", "unknown pass '" + pass + "'" + did_you_mean(pass, names));
             continue;
         }
-        const PassTypeInfo* t = reg.find(p->type);
-        if (!t) {
+        const PassTypeInfo* reg_type = reg.find(p->type);
+        if (param == "type" && (!reg_type || !reg_type->param("type"))) {
+            if (!reg.find(text)) {
+                error(p->pointer + "/type", "unknown pass type '" + text + "'" + did_you_mean(text, reg.names()));
+                continue;
+            }
+            p->type = text;
+            continue;
+        }
+        if (!reg_type) {
             error(p->pointer + "/type", "pass '" + pass + "' has unknown type '" + p->type + "'");
             continue;
         }
+        std::string hook_err, hook_at;
+        const auto inst = pass_instance_type(g, *p, *reg_type, hook_err, hook_at);
+        if (!hook_err.empty()) {
+            error(hook_at, hook_err);
+            continue;
+        }
+        const PassTypeInfo* t = inst.get();
         const ParamDecl* d = t->param(param);
         if (!d && param == "enabled") {
             bool on = true;

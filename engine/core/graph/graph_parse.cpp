@@ -64,7 +64,7 @@ public:
         }
         check_keys(root, "",
                    {"$schema", "version", "name", "description", "plugin_dirs", "variables", "resources", "passes",
-                    "outputs"},
+                    "outputs", "extends"},
                    "top-level key");
         if (const json* dirs = array_at(root, "plugin_dirs", "")) {
             const std::filesystem::path base = std::filesystem::path(file_).parent_path();
@@ -395,7 +395,7 @@ Diagnostic placed(Diagnostic d, const std::string& text, size_t offset) {
 }
 }  // namespace
 
-GraphFile parse_graph_json(const std::string& text, const std::string& path) {
+json graph_detail::graph_json_from_text(const std::string& text, const std::string& path) {
     // Before parsing: a value nested 100k deep would overflow the stack when it is copied or
     // printed in a message. Graphs are a few levels deep; the cap is io::max_json_depth().
     const int limit = io::max_json_depth();
@@ -403,9 +403,8 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path) {
         throw GraphError({placed({path, "", "nesting deeper than " + std::to_string(limit) +
                                                 " levels (arrays/objects); a graph needs a handful. PATHLET_MAX_JSON_DEPTH raises the cap"},
                                  text, d.first_too_deep)});
-    json root;
     try {
-        root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+        return json::parse(text, nullptr, true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
         std::string what = e.what();
         size_t at = what.find(": ", what.find("parse error"));  // drop "[json.exception...] parse error at ...: "
@@ -423,21 +422,44 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path) {
         const size_t at = token.empty() ? std::string::npos : text.find(token);
         throw GraphError({at == std::string::npos ? d : placed(d, text, at)});
     }
-    Parser p(path);
-    GraphFile g = p.parse(root);
-    if (!p.diags.empty()) throw GraphError(std::move(p.diags));
-    return g;
 }
 
-GraphFile parse_graph_file(const std::string& path) {
+json graph_detail::read_graph_json(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw GraphError({{path, "", "is a directory, not a graph file (give a .json file, e.g. " + path + "/*.json)"}});
+    if (std::filesystem::file_size(path, ec) > (16u << 20) && !ec)
+        throw GraphError({{path, "", "larger than 16 MiB; not a graph file"}});
     std::ifstream in(path, std::ios::binary);
     if (!in) throw GraphError({{path, "", std::string("cannot open graph file: ") + std::strerror(errno)}});
     std::ostringstream s;
     s << in.rdbuf();
-    return parse_graph_json(s.str(), path);
+    return graph_json_from_text(s.str(), path);
 }
+
+namespace {
+// Merges the extends chain in, then parses the whole as one graph.
+GraphFile parse_root(json root, const std::string& path) {
+    std::vector<std::string> dirs, chain;
+    root = expand_extends(std::move(root), path, dirs, chain);
+    Parser p(path);
+    GraphFile g = p.parse(root);
+    if (!p.diags.empty()) throw GraphError(std::move(p.diags));
+    g.dirs = std::move(dirs);
+    g.extends = std::move(chain);
+    return g;
+}
+}  // namespace
+
+GraphFile parse_graph_json(const std::string& text, const std::string& path) {
+    return parse_root(graph_json_from_text(text, path), path);
+}
+
+json expanded_graph_json(const std::string& path) {
+    std::vector<std::string> dirs, chain;
+    return expand_extends(read_graph_json(path), path, dirs, chain);
+}
+
+GraphFile parse_graph_file(const std::string& path) { return parse_root(read_graph_json(path), path); }
 
 }  // namespace pathlet

@@ -7,25 +7,8 @@
 #ifndef PATHLET_LINE_COMMON_GLSL
 #define PATHLET_LINE_COMMON_GLSL
 
+// LinePoint and the kit's uniform block:
 #include "line_hooks.glsl"
-
-// The kit's values for one draw (std140; lines::Drawer writes it as one struct, whose layout
-// is checked against this block when the kit makes a program).
-layout(std140, binding = LINE_KIT_BINDING) uniform LineKit {
-    mat4 u_view;
-    mat4 u_proj;
-    vec2 u_window;           // [t0, t1] in seconds
-    vec2 u_depth_range;      // camera near, far
-    vec2 u_speed_range;      // speed mapped to colour 0 and 1
-    int u_windowed;          // 0: draw lines whole
-    float u_half_width;      // world units, half the quad width (halo included), before the width hook
-    float u_max_width_hook;  // the width hook's result is clamped to [0, this] (GpuScene::kMaxWidthHook)
-    float u_halo;            // fraction of the width that is halo (0 = none)
-    float u_halo_min_px;     // the halo band is never thinner than this on screen (pixels)
-    float u_halo_depth;      // push-back at the rim, normalised linear depth
-    vec3 u_halo_color;
-    int u_colormap;
-};
 
 vec3 line_safe_normalize(vec3 v, vec3 fallback) {
     float l2 = dot(v, v);  // one inverse square root instead of a square root and three divisions

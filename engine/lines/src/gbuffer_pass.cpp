@@ -1,5 +1,5 @@
 // The line kit's G-buffer pass: the pathlets of the time window as view-aligned tube quads
-// into LineAO's inputs. `gbuffer` is this pass without hooks; fades subclass it.
+// through the pass's hooks into LineAO's inputs.
 #include <pathlet/lines.hpp>
 
 namespace pathlet::lines {
@@ -13,7 +13,7 @@ void GBufferPass::setup(PassContext& ctx) {
         defines.push_back("WRITE_EDGE");
         defines.push_back("EDGE_LOCATION " + std::to_string(write_id_ ? 4 : 3));
     }
-    prog_ = &program(ctx, {"line_gbuffer.frag"}, hooks_, defines);
+    prog_ = &program(ctx, {"line_gbuffer.frag"}, hooks(ctx), defines);
 }
 
 void GBufferPass::execute(PassContext& ctx) {

@@ -24,8 +24,10 @@ struct KitBlock {
     float half_width, max_width_hook, halo, halo_min_px, halo_depth;
     glm::vec3 halo_color;
     int32_t colormap;
+    float typical_length;
+    float pad_[3];  // std140 rounds the block to 16 bytes
 };
-static_assert(sizeof(KitBlock) == 192, "KitBlock must match LineKit's std140 size");
+static_assert(sizeof(KitBlock) == 208, "KitBlock must match LineKit's std140 size");
 
 // The block's layout as GL sees it against KitBlock's, for every program the kit makes (a
 // dozen queries, once per program): a drift between the two (an edited line_common.glsl on the
@@ -38,7 +40,7 @@ void check_block_layout(const ShaderProgram& prog) {
         {"u_half_width", offsetof(KitBlock, half_width)}, {"u_max_width_hook", offsetof(KitBlock, max_width_hook)},
         {"u_halo", offsetof(KitBlock, halo)},           {"u_halo_min_px", offsetof(KitBlock, halo_min_px)},
         {"u_halo_depth", offsetof(KitBlock, halo_depth)}, {"u_halo_color", offsetof(KitBlock, halo_color)},
-        {"u_colormap", offsetof(KitBlock, colormap)}};
+        {"u_colormap", offsetof(KitBlock, colormap)},   {"u_typical_length", offsetof(KitBlock, typical_length)}};
     for (const auto& [name, offset] : members) {
         const GLuint i = glGetProgramResourceIndex(prog.id(), GL_UNIFORM, name);
         GLint at = -1;
@@ -52,12 +54,21 @@ void check_block_layout(const ShaderProgram& prog) {
 }
 }  // namespace
 
+Hooks hooks(const PassContext& ctx) {
+    const Params& p = ctx.params();
+    return {p.s("width_hook"), p.s("color_hook")};
+}
+
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
                        const std::vector<std::string>& defines) {
+    // A .glsl hook is compiled as the stage its role needs (ShaderProgram's "stage:file").
+    auto staged = [](const std::string& file, const char* stage, const char* ext) {
+        return file.size() > 5 && file.compare(file.size() - 5, 5, ext) == 0 ? file : std::string(stage) + ":" + file;
+    };
     std::vector<std::string> files{"line_kit.vert", "line_quad.geom",
-                                   hooks.width.empty() ? "line_width_default.geom" : hooks.width};
+                                   hooks.width.empty() ? "line_width_default.geom" : staged(hooks.width, "geom", ".geom")};
     files.insert(files.end(), fragment.begin(), fragment.end());
-    files.push_back(hooks.color.empty() ? "line_color_default.frag" : hooks.color);
+    files.push_back(hooks.color.empty() ? "line_color_default.frag" : staged(hooks.color, "frag", ".frag"));
     std::vector<std::string> all = defines;
     all.push_back("LINE_KIT_BINDING " + std::to_string(kKitBlockBinding));
     all.push_back("LINE_PATHLET_BINDING " + std::to_string(kPathletBinding));
@@ -128,6 +139,10 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     if (!(smax > smin)) smax = smin + 1.0f;
     const float width = scene.line_width(p.f("line_width"));
     scene.note_line_width(width);
+    if (window != typical_window_) {  // a median over the scene's points: only when the window changes
+        typical_length_ = typical_pathlet_length(scene.cpu(), window);
+        typical_window_ = window;
+    }
     const KitBlock block{cam.view,
                          cam.proj,
                          glm::vec2(float(t) - window, float(t)),
@@ -140,7 +155,9 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
                          p.f("halo_min_px") * ctx.pixel_scale(),
                          p.f("halo_depth"),
                          p.v3("halo_color"),
-                         p.index("colormap")};
+                         p.index("colormap"),
+                         typical_length_,
+                         {}};
     if (!block_) {
         glCreateBuffers(1, &block_);
         glNamedBufferStorage(block_, sizeof(KitBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);

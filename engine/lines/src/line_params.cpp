@@ -15,7 +15,7 @@ int colormap_index(const std::string& name) {
     return int(std::find(n.begin(), n.end(), name) - n.begin()) % int(n.size());
 }
 
-PassTypeBuilder& declare_params(PassTypeBuilder& b) {
+PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
     return b
         .param_float("window", 1.0, -1.0, 1e6,
                      "pathlet length in seconds: the parts of the lines with times in [t - window, t] are drawn, "
@@ -42,7 +42,13 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b) {
         .param_float("lod", 0.1, 0.0, 16.0,
                      "level of detail: points a Douglas-Peucker simplification of the line drops within this many "
                      "pixels (at the line's nearest distance) are not drawn; 0 = every point, exact",
-                     {.pixels = true});
+                     {.pixels = true})
+        .param_hook("color_hook", "color", defaults.color,
+                    "colour hook: a GLSL file (on the shader path or next to the graph) defining vec4 "
+                    "line_color_hook(vec4 rgba, LinePoint p); empty = the colour map as it is, opaque")
+        .param_hook("width_hook", "width", defaults.width,
+                    "width hook: a GLSL file defining float line_width_hook(LinePoint p), a multiplier of the "
+                    "width (0..4); empty = full width");
 }
 
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b) {
@@ -61,9 +67,9 @@ PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b) {
                         {.optional = true});
 }
 
-PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& doc) {
+PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& doc, const Hooks& defaults) {
     PassTypeBuilder b(type, doc);
-    declare_params(b);
+    declare_params(b, defaults);
     declare_gbuffer_outputs(b);
     return b;
 }

@@ -336,13 +336,14 @@ TEST(lines, BrokenShaderNamesFileAndLine) {
     }
     {
         // The LineKit uniform block out of step with lines::Drawer's struct: named, never drawn.
-        int line = copy_broken(src / "engine/lines/shaders/line_common.glsl", dir, "vec2 u_depth_range;",
+        // Every kit stage and hook must see the edited block: the whole kit folder on the path.
+        for (const auto& e : fs::directory_iterator(src / "engine/lines/shaders"))
+            fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
+        int line = copy_broken(src / "engine/lines/shaders/line_kit_block.glsl", dir, "vec2 u_depth_range;",
                                "    float u_inserted; vec2 u_depth_range;");
         ASSERT_GT(line, 0);
-        for (const char* stage : {"line_kit.vert", "line_quad.geom"})  // every stage sees the edited block
-            fs::copy_file(src / "engine/lines/shaders" / stage, dir / stage, fs::copy_options::overwrite_existing);
         ShaderPathGuard guard(dir.string());
-        std::string msg = render_error("isl.json");  // isl.frag includes line_common.glsl from the path
+        std::string msg = render_error("isl.json");
         EXPECT_NE(msg.find("member u_depth_range of the LineKit block is at offset 144 in GLSL but 136"),
                   std::string::npos)
             << msg;

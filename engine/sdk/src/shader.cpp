@@ -134,13 +134,17 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     auto cleanup = [&] {
         for (GLuint s : shaders) glDeleteShader(s);
     };
-    for (const auto& name : names) {
+    for (const auto& entry : names) {
+        // "frag:hook.glsl" compiles a file as the named stage whatever its extension.
+        const size_t colon = entry.find(':');
+        const std::string name = colon == std::string::npos ? entry : entry.substr(colon + 1);
+        const std::string stage = colon == std::string::npos ? "" : "stage." + entry.substr(0, colon);
         std::string path = find_shader_file(name, dirs);
         std::vector<std::string> files;
         std::string src = expand(path, dirs, files, 0, true, defines);
         collect_uniforms(src, prog.declared_);
         prog.files_ += (prog.files_.empty() ? "" : ", ") + name;
-        GLuint sh = glCreateShader(stage_of(path));
+        GLuint sh = glCreateShader(stage_of(stage.empty() ? path : stage));
         shaders.push_back(sh);
         const char* p = src.c_str();
         glShaderSource(sh, 1, &p, nullptr);

@@ -1,25 +1,27 @@
 // The line kit: what every pass that draws pathlets uses, in tree or out (gbuffer, isl,
-// geometric_fade, a researcher's fade). It owns the shared line parameters (declared once),
-// the time-window draw, colour maps, halos and the tube normal and depth; a pass plugs in
-// small GLSL hooks instead of forking the shaders:
+// fill_list, geometric_fade, fade_core, a researcher's own). It owns the shared line
+// parameters (declared once), the time-window draw, colour maps, halos and the tube normal
+// and depth; a pass plugs in small GLSL hook files instead of forking the shaders:
 //
 //   width hook (.geom):  float line_width_hook(LinePoint p)             multiplier of the width
 //   colour hook (.frag): vec4  line_color_hook(vec4 rgba, LinePoint p)   colour and opacity
 //
-// LinePoint (engine/lines/shaders/line_hooks.glsl) carries the point's time, its age in the window (0 at
-// the head, 1 at the tail), the arc length from the head and from the tail, speed, line id.
-// The kit derives the quad, tube normal and tube depth from the hooked width, so a taper is
-// a hook and a parameter list. A whole fade strategy (see plugins/example_fade/):
+// Every kit pass has the parameters `color_hook` and `width_hook`, so a fade strategy is one
+// GLSL file that every line pipeline accepts (opaque G-buffer, OIT lists, ISL):
 //
-//   class Fade : public pathlet::lines::GBufferPass {
-//   public:
-//       Fade() : GBufferPass({.color = "fade_color.frag"}) {}
-//       void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& p) override {
-//           p.set("u_strength", ctx.params().f("strength"));
-//       }
-//   };
-//   PATHLET_PLUGIN("fade", { sink->add(pathlet::lines::gbuffer_pass_type("fade", "...")
-//                                .param_float("strength", 1, 0, 1, "...").make<Fade>()); })
+//   pathlet render variant2_oit --set fill.color_hook=my_fade.frag
+//
+// and the uniforms the hook annotates with @param become that pass's parameters, declared once,
+// in the shader (validated, --set, describe, viewer panels; bound to u_<name>):
+//
+//   uniform float u_start;  // @param 0.3 [0, 1] "age where the fade begins"
+//
+// LinePoint (shaders/line_hooks.glsl) carries the point's time, its age in the window (0 at
+// the head, 1 at the tail), the arc length from the head and from the tail, speed, line id.
+// The kit derives the quad, tube normal and tube depth from the hooked width. Its own fades are
+// hook files: fade_opacity.frag (variant 2's end fade), fade_width.geom (variant 3's taper),
+// fade_core.frag, all on line_fade.glsl's parameters. A pass with resources of its own is a
+// small C++ class on GBufferPass or Drawer (see plugins/example_fade/).
 #pragma once
 
 #include <pathlet/gpu_scene.hpp>
@@ -37,25 +39,29 @@ namespace pathlet::lines {
 constexpr GLuint kPathletBinding = 7;
 constexpr GLuint kKitBlockBinding = 7;
 
-// GLSL hook files, found on the shader path (the pass's own folder first). Empty: the kit's
-// default (full width; the colour map as it is).
+// GLSL hook files, found on the shader path and next to the graph. Empty: the kit's default
+// (full width; the colour map as it is, opaque).
 struct Hooks {
-    std::string width = {};  // .geom defining float line_width_hook(LinePoint p)
-    std::string color = {};  // .frag defining vec4 line_color_hook(vec4 rgba, LinePoint p)
+    std::string width = {};  // .geom (or .glsl) defining float line_width_hook(LinePoint p)
+    std::string color = {};  // .frag (or .glsl) defining vec4 line_color_hook(vec4 rgba, LinePoint p)
 };
+// The hook files a kit pass's parameters name (color_hook, width_hook).
+Hooks hooks(const PassContext& ctx);
 
 // Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl.
 const std::vector<std::string>& colormaps();
 int colormap_index(const std::string& name);
 
-// The shared line parameters: window, line_width, halo, halo_color, halo_depth, colormap,
-// speed_min, speed_max, background, lod. Declared here once for every line pass.
-PassTypeBuilder& declare_params(PassTypeBuilder& b);
+// The shared line parameters: window, line_width, halo, halo_min_px, halo_color, halo_depth,
+// colormap, speed_min, speed_max, background, lod, and the hook files color_hook and width_hook
+// (their defaults for this pass type in `defaults`). Declared here once for every line pass.
+PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults = {});
 // LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id and edge.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
 // A G-buffer line pass type: the shared parameters and the G-buffer outputs; add your own
-// parameters and finish with .make<YourPass>().
-PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& doc);
+// parameters and finish with .make<YourPass>() (.make<GBufferPass>() for a type that only
+// names its default hooks).
+PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& doc, const Hooks& defaults = {});
 
 // A program of the kit's vertex and geometry stages (line_kit.vert, line_quad.geom), the
 // width hook, the pass's fragment shader(s) and the colour hook. Cached by the context.
@@ -92,26 +98,13 @@ private:
     GLuint buffer_ = 0;
     size_t capacity_ = 0;
     GLuint block_ = 0;  // the LineKit uniform block's buffer
+    float typical_window_ = -1.0f, typical_length_ = 1.0f;  // cached per window length
 };
 
-// The end fade of a pathlet (engine/lines/shaders/line_fade.glsl: float line_end_fade(LinePoint)), shared
-// by every fade strategy: parameters tail_fade, head_fade, fade_measure (time | arc_length),
-// fade_curve (linear | smooth | round) and fade_floor, declared once here. In arc-length mode
-// the lengths are fractions of a typical pathlet (median speed x window), so the same values
-// read alike in both modes while every pathlet gets the same fade length on screen.
-PassTypeBuilder& declare_fade_params(PassTypeBuilder& b, double tail_fade, double head_fade,
-                                     const std::string& what_fades);
-class EndFade {
-public:
-    // Call from setup(): measures the typical pathlet length of the scene for the window.
-    void setup(PassContext& ctx);
-    // Sets line_fade.glsl's uniforms on `prog`.
-    void set_uniforms(PassContext& ctx, const ShaderProgram& prog) const;
-    float typical_length() const { return reference_; }
-
-private:
-    float reference_ = 1.0f;
-};
+// The unit of the kit's arc-length measures (u_typical_length in every kit program): a typical
+// pathlet's length, the median speed x window, or with whole lines (window <= 0) the median
+// line length. A fade over a share of it is the same length on screen for every pathlet.
+float typical_pathlet_length(const Scene& scene, float window);
 
 // Where the lines can be on screen this frame: the scene's bounding box, widened by the line
 // width, projected with the frame's camera, plus pad_px pixels; {x0, y0, x1, y1} in pixels
@@ -140,40 +133,24 @@ void clear_color(int index, glm::vec4 value);
 void clear_color_int(int index, glm::ivec4 value);
 void clear_depth(float value = 1.0f);
 
-// The G-buffer line pass, ready to subclass: `gbuffer` is this with no hooks, a fade is this
-// with a hook and its uniforms. Writes the outputs of declare_gbuffer_outputs().
+// The G-buffer line pass: the pathlets through the pass's hooks into LineAO's inputs (the
+// outputs of declare_gbuffer_outputs()). `gbuffer`, `geometric_fade` and `fade_core` are this
+// with other default hooks; subclass it for a strategy that needs its own resources.
 class GBufferPass : public Pass {
 public:
-    explicit GBufferPass(Hooks hooks = {}) : hooks_(std::move(hooks)) {}
     void setup(PassContext& ctx) override;
     void execute(PassContext& ctx) override;
 
 protected:
-    // The hooks' own uniforms, every frame, with the program in use. A name the program does
-    // not declare throws (a typo must not silently switch a fade off).
+    // Values you derive for your hook every frame, with the program in use (declared
+    // parameters reach their uniforms by themselves). A name the program does not declare
+    // throws (a typo must not silently switch a fade off).
     virtual void set_uniforms(PassContext& ctx, const ShaderProgram& prog) {}
 
-    Hooks hooks_;
     ShaderProgram* prog_ = nullptr;
     Drawer drawer_;
     bool write_id_ = false;
     bool write_edge_ = false;
-};
-
-// A G-buffer line pass whose hook uses the kit's end fade (line_fade.glsl): geometric_fade
-// tapers the width with it, fade_core keeps the opaque core. Declare its parameters with
-// declare_fade_params; override set_uniforms (calling this one) to add your own.
-class EndFadePass : public GBufferPass {
-public:
-    using GBufferPass::GBufferPass;
-    void setup(PassContext& ctx) override {
-        GBufferPass::setup(ctx);
-        fade_.setup(ctx);
-    }
-
-protected:
-    void set_uniforms(PassContext& ctx, const ShaderProgram& prog) override { fade_.set_uniforms(ctx, prog); }
-    EndFade fade_;
 };
 
 }  // namespace pathlet::lines

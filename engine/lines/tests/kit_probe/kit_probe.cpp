@@ -11,9 +11,6 @@ namespace {
 const std::vector<std::string> kProbes{"age", "arc", "taper", "typo", "widen"};
 
 class KitProbe : public pathlet::lines::GBufferPass {
-public:
-    KitProbe() : GBufferPass({.width = "kit_probe_width.geom", .color = "kit_probe_color.frag"}) {}
-
 protected:
     void set_uniforms(pathlet::PassContext& ctx, const pathlet::ShaderProgram& prog) override {
         const std::string probe = ctx.params().s("probe");
@@ -26,7 +23,8 @@ protected:
 }  // namespace
 
 PATHLET_PLUGIN("kit_probe", {
-    sink->add(pathlet::lines::gbuffer_pass_type("kit_probe", "test fixture: writes what the kit's hooks see")
+    sink->add(pathlet::lines::gbuffer_pass_type("kit_probe", "test fixture: writes what the kit's hooks see",
+                                                {.width = "kit_probe_width.geom", .color = "kit_probe_color.frag"})
                   .param_enum("probe", "age", kProbes, "age: R = age; arc: R, G = arc from head, tail / scale; "
                                                        "taper: width 1 - age; typo: sets a misspelt uniform; widen: width x scale")
                   .param_float("scale", 1.0, 1e-6, 1e9, "arc length that maps to colour 1")

@@ -34,6 +34,10 @@ struct ParamDecl {
     std::vector<std::string> choices;                // Enum only
     std::string doc;
     bool pixels = false;  // a length in picture pixels: bound as u_<name> times the pixel scale
+    // A string naming a hook file of this role ("color" or "width", pathlet/lines.hpp): the
+    // uniforms the file annotates with @param become parameters of the pass instance.
+    std::string hook;
+    std::string origin;   // a parameter a hook declared: "file.frag:12"
 
     // Checks and converts a JSON value (ints accepted for floats, "#rrggbb" for colours).
     // Returns an error message, or "" and sets `out`.
@@ -114,6 +118,9 @@ public:
     PassTypeBuilder& param_enum(const std::string& name, const std::string& def, std::vector<std::string> choices,
                                 const std::string& doc);
     PassTypeBuilder& param_string(const std::string& name, const std::string& def, const std::string& doc);
+    // A hook file ("color" or "width" role): its @param uniforms become the instance's parameters.
+    PassTypeBuilder& param_hook(const std::string& name, const std::string& role, const std::string& def,
+                                const std::string& doc);
     PassTypeBuilder& param_vec3(const std::string& name, glm::vec3 def, const std::string& doc);
     PassTypeBuilder& param_color(const std::string& name, glm::vec3 def, const std::string& doc);
     // Any parameter, e.g. one reflected from a shader.

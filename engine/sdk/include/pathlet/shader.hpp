@@ -29,7 +29,8 @@ public:
     ShaderProgram& operator=(ShaderProgram&& o) noexcept;
     ~ShaderProgram();
 
-    // Stage by extension: .vert .geom .frag .comp. `dirs` are searched in order.
+    // Stage by extension: .vert .geom .frag .comp, or named: "frag:hook.glsl". `dirs` are
+    // searched in order.
     static ShaderProgram from_files(const std::vector<std::string>& files, const std::vector<std::string>& dirs,
                                     const std::vector<std::string>& defines = {});
 
