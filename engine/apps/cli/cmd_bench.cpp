@@ -160,15 +160,12 @@ int merge(const Args& a) {
 
 Scene load_data_set(const Args& cli, const Experiment& e, size_t d) {
     if (e.data.empty()) return load_scene(cli, true);
-    Args tmp("bench", "");
-    add_scene_options(tmp);
     const auto& ds = e.data[d];
-    std::vector<std::string> argv;
-    if (!ds.phantom.empty()) argv = {"--phantom", ds.phantom};
-    if (!ds.file.empty()) argv = {"--data", ds.file};
-    if (!ds.mesh.empty()) argv.insert(argv.end(), {"--mesh", ds.mesh});
-    tmp.parse(argv);
-    return load_scene(tmp, true);
+    SceneSource src;
+    src.phantom = ds.phantom;
+    src.data = ds.file;
+    src.mesh = ds.mesh;
+    return load_scene(src, true);
 }
 
 int run(const std::vector<std::string>& argv) {
