@@ -2,6 +2,8 @@
 
 #include "report.hpp"
 
+#include "cli/scene_args.hpp"
+
 #include "renderer.hpp"
 
 #include <cstdio>
@@ -12,6 +14,14 @@ namespace pathlet::cli::bench {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+Scene load_data_set(const DataSet& ds) {
+    SceneSource src;
+    src.phantom = ds.phantom;
+    src.data = ds.file;
+    src.mesh = ds.mesh;
+    return load_scene(src, true);
+}
 
 json graph_info(const Experiment& e, const std::string& origin) {
     json info = json::object();

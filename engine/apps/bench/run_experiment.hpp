@@ -18,6 +18,9 @@
 
 namespace pathlet::cli::bench {
 
+// An experiment's data set, loaded as --phantom or --data/--mesh would load it (quietly).
+Scene load_data_set(const DataSet& ds);
+
 // Per graph label: the graph as given, its resolved file and its hash. Throws
 // std::runtime_error ("ORIGIN: /graphs/I: no graph file ...") for a graph that is not there:
 // call it before any work.

@@ -161,12 +161,7 @@ int merge(const Args& a) {
 
 Scene load_data_set(const Args& cli, const Experiment& e, size_t d) {
     if (e.data.empty()) return load_scene(cli, true);
-    const auto& ds = e.data[d];
-    SceneSource src;
-    src.phantom = ds.phantom;
-    src.data = ds.file;
-    src.mesh = ds.mesh;
-    return load_scene(src, true);
+    return bench::load_data_set(e.data[d]);
 }
 
 int run(const std::vector<std::string>& argv) {
