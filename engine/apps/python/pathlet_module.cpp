@@ -16,6 +16,7 @@
 #include "io/raw_polylines.hpp"
 #include "measure.hpp"
 #include "renderer.hpp"
+#include "util/output_check.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -386,6 +387,7 @@ py::object run_bench(const BenchArgs& a, const std::optional<SceneRef>& scene) {
     if (!a.shard.empty()) how.shard = cli::parse_shard(a.shard);
     how.command = a.command;
     how.graphs = cli::bench::graph_info(e, a.experiment);
+    if (!a.out.empty()) check_output_dir(a.out, "experiment results (out)");
     if (a.images && !a.out.empty()) how.image_dir = a.out;
     cli::bench::ExperimentHooks hooks;
     hooks.load_data = [&](size_t d) {
