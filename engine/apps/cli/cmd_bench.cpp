@@ -4,6 +4,7 @@
 #include "args.hpp"
 #include "bench/compare.hpp"
 #include "bench/experiment.hpp"
+#include "bench/plots.hpp"
 #include "bench/report.hpp"
 #include "bench/run_experiment.hpp"
 #include "bench/shard.hpp"
@@ -152,6 +153,11 @@ int merge(const Args& a) {
     merged["complete"] = runs.size() == planned;
     bench::write_report_dir(out, merged);
     std::fprintf(stderr, "merged %zu of %zu runs into %s\n", runs.size(), planned, out.c_str());
+    if (a.has("plots"))
+        if (const std::string err = bench::write_matplotlib_plots(out); !err.empty()) {
+            std::fprintf(stderr, "error: --plots: %s\n", err.c_str());
+            return 1;
+        }
     if (runs.size() != planned) {
         std::fprintf(stderr, "error: %zu runs missing (a shard failed or was not listed)\n", planned - runs.size());
         return 1;
@@ -198,6 +204,7 @@ int run(const std::vector<std::string>& argv) {
         .option("camera", "FILE", "", "camera path JSON (default: frame the data)")
         .option("report", "PREFIX", "", "write PREFIX.csv and PREFIX.json with every pass of every run")
         .flag("no-images", "--experiment: no representative image per run")
+        .flag("plots", "--experiment, --merge: also PNG and PDF figures with Matplotlib (python3 -m pathlet.plot)")
         .flag("quiet", "no progress line")
         .multi("plugin-dir", "DIR", "also load plugins from DIR");
     add_scene_options(a);
@@ -226,6 +233,7 @@ int run(const std::vector<std::string>& argv) {
     const bool from_file = a.has("experiment");
     if (from_file == !a.pos("GRAPHS").empty())
         throw UsageError(from_file ? "give either GRAPHS or --experiment, not both" : "missing GRAPHS (or --experiment FILE)");
+    if (a.has("plots") && !from_file) throw UsageError("--plots needs --experiment (or --merge): figures of a results folder");
     Experiment e = from_file ? bench::load_experiment(a.get("experiment")) : experiment_from_args(a);
     std::vector<std::string> cli_sets;  // --set on top of an experiment file, qualified by label
     if (from_file) {
@@ -321,6 +329,11 @@ int run(const std::vector<std::string>& argv) {
         std::printf("  %-40s %10.2f %10.2f %10.2f %8.1f\n", label.c_str(), f.median, f.p5, f.p95,
                     f.median > 0 ? 1000.0 / f.median : 0.0);
     if (from_file) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", out_dir.c_str());
+    if (a.has("plots"))
+        if (const std::string err = bench::write_matplotlib_plots(out_dir); !err.empty()) {
+            std::fprintf(stderr, "error: --plots: %s\n", err.c_str());
+            return 1;
+        }
     if (a.has("report")) std::fprintf(stderr, "wrote %s.csv and %s.json\n", a.get("report").c_str(), a.get("report").c_str());
     if (g_interrupted) {
         std::fprintf(stderr, "interrupted after %zu of %zu runs; the files hold the finished runs\n", done, mine);
