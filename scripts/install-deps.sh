@@ -1,6 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Pathlet needs that are not installed yet (root or sudo).
+#   --slurm   also a single-node Slurm (slurm-wlm, munge) for tests/slurm; not in the main job
 set -euo pipefail
+SLURM=0
+for arg in "$@"; do
+  case "$arg" in
+    --slurm) SLURM=1 ;;
+    *) echo "install-deps: unknown option '$arg' (--slurm)" >&2; exit 2 ;;
+  esac
+done
 PKGS=(
   build-essential cmake pkg-config                  # toolchain
   libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri   # GL 4.5 via EGL; llvmpipe when there is no GPU
@@ -13,9 +21,13 @@ PKGS=(
   xvfb                                              # window tests of `pathlet view` (private X server)
   libimgui-dev libstb-dev                           # the panels of `pathlet view` (Dear ImGui)
   python3-numpy python3-pil                         # figure scripts (scripts/aa-figures.sh)
+  python3-dev pybind11-dev python3-pybind11         # import pathlet (engine/apps/python)
+  python3-matplotlib python3-pytest                 # pathlet.plot, bench --plots; the module's tests
+  jupyter-nbconvert python3-ipykernel               # the example notebook, executed by the tests
   clang-14 libclang-rt-14-dev llvm-14               # sanitizer build and libFuzzer targets (scripts/sanitize.sh, fuzz.sh)
 )
-OPTIONAL=(ffmpeg)                                   # MP4 export, only if it installs
+OPTIONAL=(ffmpeg python3-pandas)                    # MP4 export; DataFrames from pathlet (else lists of dicts)
+[ "$SLURM" = 1 ] && PKGS+=(slurm-wlm munge)         # tests/slurm: slurmctld + slurmd on localhost
 missing=()
 for p in "${PKGS[@]}" "${OPTIONAL[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -31,4 +43,5 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${PKGS[@]}" >/dev/null
 $SUDO apt-get install -y -qq --no-install-recommends "${OPTIONAL[@]}" >/dev/null 2>&1 \
-  || echo "install-deps: ffmpeg not installed; videos are skipped, image sequences still work"
+  || echo "install-deps: ffmpeg or python3-pandas not installed; videos are skipped (image sequences still work),
+  pathlet tables are lists of dicts"

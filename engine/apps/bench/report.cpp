@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -93,14 +94,25 @@ std::vector<std::string> write_report_dir(const std::string& dir, const json& re
     write_file_atomic(dir + "/summary.csv", summary_csv(report));
     write_file_atomic(dir + "/frames.csv", frames_csv(report));
 
-    // Bars: top-level passes only (nested ones are inside their parent's time).
+    // Bars: top-level passes only (nested ones are inside their parent's time), grouped by size
+    // in the experiment's order, plan order within a size.
+    std::vector<std::string> sizes = report.value("sizes", std::vector<std::string>{});
     std::vector<Bar> bars;
     for (const json& r : report.at("runs")) {
-        Bar b{r["meta"].value("label", "") + " " + r["meta"].value("size", ""), {}};
+        const std::string size = r["meta"].value("size", "");
+        if (std::find(sizes.begin(), sizes.end(), size) == sizes.end()) sizes.push_back(size);
+        Bar b{r["meta"].value("label", "") + " " + size, size, {}};
         for (const json& p : r.at("passes"))
             if (p.value("depth", 0) == 0) b.parts.push_back({p.value("name", ""), p["gpu_ms"].value("median", 0.0)});
+        const json& f = r.at("frame").at("gpu_ms");
+        b.frame_median = f.value("median", 0.0);
+        b.frame_p5 = f.value("p5", 0.0);
+        b.frame_p95 = f.value("p95", 0.0);
         bars.push_back(b);
     }
+    std::stable_sort(bars.begin(), bars.end(), [&](const Bar& a, const Bar& b) {
+        return std::find(sizes.begin(), sizes.end(), a.group) < std::find(sizes.begin(), sizes.end(), b.group);
+    });
     const std::string title = report.value("experiment", std::string("bench")) + ": median time per pass (" +
                               report.value("gl_renderer", std::string("?")) + ")";
     write_file_atomic(dir + "/passes.svg", stacked_bars_svg(title, bars));

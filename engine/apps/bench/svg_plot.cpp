@@ -8,8 +8,9 @@
 namespace pathlet::cli::bench {
 namespace {
 
-const char* kPalette[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948",
-                          "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
+// Series of a sweep chart (graph x size); passes have their own colours (pass_colors).
+const char* kPalette[] = {"#1f3b73", "#c0392b", "#2e8b57", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#b7950b",
+                          "#2c3e50", "#a93226"};
 
 std::string esc(const std::string& s) {
     std::string o;
@@ -64,48 +65,102 @@ std::string y_axis(double x0, double y0, double plot_h, double plot_w, double to
 
 }  // namespace
 
+std::map<std::string, std::string> pass_colors(const std::vector<std::string>& names) {
+    // Tableau 20; the shipped graphs' passes first, with fixed places (as in pathlet/plot.py).
+    static const char* palette[] = {"#4e79a7", "#a0cbe8", "#f28e2b", "#ffbe7d", "#59a14f", "#8cd17d", "#b6992d",
+                                    "#f1ce63", "#499894", "#86bcb6", "#e15759", "#ff9d9a", "#79706e", "#bab0ac",
+                                    "#d37295", "#fabfd2", "#b07aa1", "#d4a6c8", "#9d7660", "#d7b5a6"};
+    static const std::map<std::string, int> known = {
+        {"gbuffer", 0},   {"gauss_pyramid", 1}, {"lineao", 2},      {"bilateral", 3},       {"isl", 4},
+        {"temporal_ao", 5}, {"edge_aa", 6},     {"overlay", 7},     {"fade_core", 8},       {"clear_list", 9},
+        {"geometric_fade", 10}, {"fill_list", 11}, {"wall", 12},    {"resolve_list", 16}};
+    constexpr size_t n = sizeof palette / sizeof palette[0];
+    std::vector<bool> taken(n, false);
+    for (const auto& name : names)
+        if (auto it = known.find(name); it != known.end()) taken[size_t(it->second)] = true;
+    std::map<std::string, std::string> out;
+    for (const auto& name : names) {
+        if (out.count(name)) continue;
+        if (auto it = known.find(name); it != known.end()) {
+            out[name] = palette[it->second];
+            continue;
+        }
+        uint32_t h = 0x811C9DC5u;
+        for (unsigned char c : name) h = (h ^ c) * 0x01000193u;
+        size_t i = h % n;
+        for (size_t k = 0; k < n && taken[i]; ++k) i = (i + 1) % n;
+        taken[i] = true;
+        out[name] = palette[i];
+    }
+    return out;
+}
+
 std::string stacked_bars_svg(const std::string& title, const std::vector<Bar>& bars) {
     std::vector<std::string> names;  // legend order: first seen
     double top = 0;
+    size_t longest = 8;
     for (const auto& b : bars) {
         double sum = 0;
         for (const auto& [n, v] : b.parts) {
             sum += v;
             if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
         }
-        top = std::max(top, sum);
+        top = std::max({top, sum, b.frame_p95});
+        longest = std::max(longest, b.label.size());
     }
-    auto [ymax, step] = axis(top);
-    const double bw = 56, gap = 28, x0 = 70, y0 = 330, plot_h = 280;
-    const double plot_w = std::max(200.0, bars.size() * (bw + gap) + gap);
-    const int legend_w = 200;
-    // Room below for the slanted labels, at the right for the legend.
-    const int w = int(x0 + plot_w + legend_w + 60), h = int(y0 + 120);
-    std::string s = header(w, std::max(h, int(60 + names.size() * 18)), title);
-    s += y_axis(x0, y0, plot_h, plot_w, ymax, step, "median ms per frame");
+    const auto colors = pass_colors(names);
+    auto [xmax, step] = axis(top * 1.12);
+    // Rows of 24 px, 12 px more between groups; the label column as wide as the longest label.
+    const double row = 24, bh = 16, gap = 12, label_w = 12 + 6.6 * double(longest), x0 = label_w + 10, y0 = 44;
+    const double plot_w = 520;
+    double y = y0;
+    std::vector<double> ys;
+    for (size_t i = 0; i < bars.size(); ++i) {
+        if (i > 0 && bars[i].group != bars[i - 1].group) y += gap;
+        ys.push_back(y);
+        y += row;
+    }
+    const double plot_h = std::max(y - y0, 40.0);
+    const int w = int(x0 + plot_w + 200), h = int(std::max(y0 + plot_h + 50, 60.0 + double(names.size()) * 18));
+    std::string s = header(w, h, title);
+    auto px = [&](double v) { return x0 + v / xmax * plot_w; };
+    for (double v = 0; v <= xmax + step * 0.01; v += step)
+        s += "<line x1=\"" + num(px(v)) + "\" x2=\"" + num(px(v)) + "\" y1=\"" + num(y0 - 4) + "\" y2=\"" +
+             num(y0 + plot_h) + "\" stroke=\"#ddd\"/>\n<text x=\"" + num(px(v)) + "\" y=\"" + num(y0 + plot_h + 16) +
+             "\" text-anchor=\"middle\">" + num(v) + "</text>\n";
+    s += "<text x=\"" + num(x0 + plot_w / 2) + "\" y=\"" + num(y0 + plot_h + 36) +
+         "\" text-anchor=\"middle\">median ms per frame (passes stacked; | and whisker: frame median, p5..p95)</text>\n";
     for (size_t i = 0; i < bars.size(); ++i) {
         const Bar& b = bars[i];
-        double x = x0 + gap + i * (bw + gap), y = y0, sum = 0;
-        s += "<g class=\"bar\" data-label=\"" + esc(b.label) + "\">\n";
+        const double by = ys[i] + (row - bh) / 2;
+        double x = 0, sum = 0;
+        s += "<g class=\"bar\" data-label=\"" + esc(b.label) + "\">\n<text x=\"" + num(x0 - 8) + "\" y=\"" +
+             num(by + bh - 4) + "\" text-anchor=\"end\">" + esc(b.label) + "</text>\n";
         for (const auto& [n, v] : b.parts) {
-            size_t ci = std::find(names.begin(), names.end(), n) - names.begin();
-            double hgt = v / ymax * plot_h;
-            y -= hgt;
+            s += "<rect x=\"" + num(px(x)) + "\" y=\"" + num(by) + "\" width=\"" + num(px(x + v) - px(x)) +
+                 "\" height=\"" + num(bh) + "\" fill=\"" + colors.at(n) + "\"><title>" +
+                 esc(b.label + ": " + n + " " + num(v) + " ms") + "</title></rect>\n";
+            x += v;
             sum += v;
-            s += "<rect x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(bw) + "\" height=\"" + num(hgt) +
-                 "\" fill=\"" + kPalette[ci % 10] + "\"><title>" + esc(b.label + ": " + n + " " + num(v) + " ms") +
-                 "</title></rect>\n";
         }
-        s += "<text x=\"" + num(x + bw / 2) + "\" y=\"" + num(y - 4) + "\" text-anchor=\"middle\">" + num(sum) +
-             "</text>\n<text transform=\"translate(" + num(x + bw / 2) + "," + num(y0 + 14) +
-             ") rotate(20)\" font-size=\"11\">" + esc(b.label) + "</text>\n</g>\n";
+        double end = sum;
+        if (b.frame_median >= 0) {
+            const double cy = by + bh / 2;
+            s += "<line x1=\"" + num(px(b.frame_p5)) + "\" x2=\"" + num(px(b.frame_p95)) + "\" y1=\"" + num(cy) +
+                 "\" y2=\"" + num(cy) + "\" stroke=\"#222\"/><line x1=\"" + num(px(b.frame_median)) + "\" x2=\"" +
+                 num(px(b.frame_median)) + "\" y1=\"" + num(by - 2) + "\" y2=\"" + num(by + bh + 2) +
+                 "\" stroke=\"#222\" stroke-width=\"2\"/>\n";
+            end = std::max(end, b.frame_p95);
+        }
+        s += "<text x=\"" + num(px(end) + 6) + "\" y=\"" + num(by + bh - 4) + "\" font-size=\"11\">" +
+             num(b.frame_median >= 0 ? b.frame_median : sum) + " ms</text>\n</g>\n";
     }
-    s += "<line x1=\"" + num(x0) + "\" x2=\"" + num(x0) + "\" y1=\"" + num(y0 - plot_h) + "\" y2=\"" + num(y0) +
+    s += "<line x1=\"" + num(x0) + "\" x2=\"" + num(x0) + "\" y1=\"" + num(y0 - 4) + "\" y2=\"" + num(y0 + plot_h) +
          "\" stroke=\"black\"/>\n";
     for (size_t i = 0; i < names.size(); ++i) {
-        double lx = x0 + plot_w + 16, ly = 50 + i * 18.0;
+        double lx = x0 + plot_w + 24, ly = y0 + 10 + i * 18.0;
         s += "<rect x=\"" + num(lx) + "\" y=\"" + num(ly - 10) + "\" width=\"12\" height=\"12\" fill=\"" +
-             kPalette[i % 10] + "\"/><text x=\"" + num(lx + 18) + "\" y=\"" + num(ly) + "\">" + esc(names[i]) +
+             colors.at(names[i]) + "\"/><text x=\"" + num(lx + 18) + "\" y=\"" + num(ly) + "\">" + esc(names[i]) +
              "</text>\n";
     }
     return s + "</svg>\n";

@@ -4,7 +4,9 @@
 #include "args.hpp"
 #include "bench/compare.hpp"
 #include "bench/experiment.hpp"
+#include "bench/plots.hpp"
 #include "bench/report.hpp"
+#include "bench/run_experiment.hpp"
 #include "bench/shard.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
@@ -151,6 +153,11 @@ int merge(const Args& a) {
     merged["complete"] = runs.size() == planned;
     bench::write_report_dir(out, merged);
     std::fprintf(stderr, "merged %zu of %zu runs into %s\n", runs.size(), planned, out.c_str());
+    if (a.has("plots"))
+        if (const std::string err = bench::write_matplotlib_plots(out); !err.empty()) {
+            std::fprintf(stderr, "error: --plots: %s\n", err.c_str());
+            return 1;
+        }
     if (runs.size() != planned) {
         std::fprintf(stderr, "error: %zu runs missing (a shard failed or was not listed)\n", planned - runs.size());
         return 1;
@@ -160,15 +167,7 @@ int merge(const Args& a) {
 
 Scene load_data_set(const Args& cli, const Experiment& e, size_t d) {
     if (e.data.empty()) return load_scene(cli, true);
-    Args tmp("bench", "");
-    add_scene_options(tmp);
-    const auto& ds = e.data[d];
-    std::vector<std::string> argv;
-    if (!ds.phantom.empty()) argv = {"--phantom", ds.phantom};
-    if (!ds.file.empty()) argv = {"--data", ds.file};
-    if (!ds.mesh.empty()) argv.insert(argv.end(), {"--mesh", ds.mesh});
-    tmp.parse(argv);
-    return load_scene(tmp, true);
+    return bench::load_data_set(e.data[d]);
 }
 
 int run(const std::vector<std::string>& argv) {
@@ -205,6 +204,7 @@ int run(const std::vector<std::string>& argv) {
         .option("camera", "FILE", "", "camera path JSON (default: frame the data)")
         .option("report", "PREFIX", "", "write PREFIX.csv and PREFIX.json with every pass of every run")
         .flag("no-images", "--experiment: no representative image per run")
+        .flag("plots", "--experiment, --merge: also PNG and PDF figures with Matplotlib (python3 -m pathlet.plot)")
         .flag("quiet", "no progress line")
         .multi("plugin-dir", "DIR", "also load plugins from DIR");
     add_scene_options(a);
@@ -233,6 +233,7 @@ int run(const std::vector<std::string>& argv) {
     const bool from_file = a.has("experiment");
     if (from_file == !a.pos("GRAPHS").empty())
         throw UsageError(from_file ? "give either GRAPHS or --experiment, not both" : "missing GRAPHS (or --experiment FILE)");
+    if (a.has("plots") && !from_file) throw UsageError("--plots needs --experiment (or --merge): figures of a results folder");
     Experiment e = from_file ? bench::load_experiment(a.get("experiment")) : experiment_from_args(a);
     std::vector<std::string> cli_sets;  // --set on top of an experiment file, qualified by label
     if (from_file) {
@@ -252,32 +253,20 @@ int run(const std::vector<std::string>& argv) {
     if (a.has("data") || a.has("phantom") || a.has("mesh")) e.data.clear();
     if (e.frames < 1 || e.warmup < 0) throw UsageError("--frames must be >= 1 and --warmup >= 0");
 
-    RenderOptions base;
     Shard shard;
+    bench::ExperimentSettings how;
     try {
         for (const auto& s : e.sizes) parse_size(s);
-        base.time = parse_time_range(e.time);
-        base.timing = parse_timing_backend(a.get("timing"));
+        parse_time_range(e.time);
+        how.timing = parse_timing_backend(a.get("timing"));
         if (a.has("shard")) shard = parse_shard(a.get("shard"));
     } catch (const std::invalid_argument& ex) {
         throw UsageError(e.name + ": " + ex.what());
     }
-    base.repeat = e.frames;
-    base.warmup = e.warmup;
-    base.camera_path = e.camera;
-    base.orbit_deg_per_s = e.orbit_deg_per_s;
-    base.write_images = false;
-    base.quiet = true;
-
+    how.shard = shard;
+    how.command = command_line(argv);
     // Graphs must exist, outputs must be writable: both before any work.
-    json graph_info = json::object();
-    for (size_t gi = 0; gi < e.graphs.size(); ++gi) {
-        const std::string path = resolve_graph_path(e.graphs[gi].graph);
-        if (!fs::is_regular_file(path))
-            throw std::runtime_error((from_file ? a.get("experiment") + ": /graphs/" + std::to_string(gi) + ": " : "") +
-                                     "no graph file or shipped graph named '" + e.graphs[gi].graph + "'");
-        graph_info[e.graphs[gi].label] = {{"graph", e.graphs[gi].graph}, {"path", path}, {"fnv1a64", bench::file_hash(path)}};
-    }
+    how.graphs = bench::graph_info(e, from_file ? a.get("experiment") : "");
     std::string out_dir;
     if (from_file) {
         out_dir = a.has("out") ? a.get("out")
@@ -286,32 +275,12 @@ int run(const std::vector<std::string>& argv) {
         check_output_dir(out_dir, "experiment results (--out)");
     }
     if (a.has("report")) check_output_file(a.get("report") + ".csv", "the report (--report)");
-    const bool images = from_file && !a.has("no-images");
-
-    const std::vector<bench::Run> runs = bench::plan_runs(e);
-    size_t mine = 0;
-    for (size_t k = 0; k < runs.size(); ++k) mine += shard.owns(k);
+    if (from_file && !a.has("no-images")) how.image_dir = out_dir;
 
     Runtime rt;
     rt.load_plugins(a.all("plugin-dir"));
-    rt.ensure_gl(true);
 
-    json report = {{"experiment", e.name},
-                   {"description", e.description},
-                   {"command", command_line(argv)},
-                   {"machine", bench::machine_info()},
-                   {"gl_renderer", rt.gl->renderer()},
-                   {"graphs", graph_info},
-                   {"sizes", e.sizes},
-                   {"time", e.time},
-                   {"frames", e.frames},
-                   {"warmup", e.warmup},
-                   {"sweep_param", e.sweep.param},
-                   {"planned_runs", runs.size()},
-                   {"complete", false},
-                   {"runs", json::array()}};
-    if (shard.active()) report["shard"] = {{"index", shard.index}, {"count", shard.count}};
-
+    json report;
     auto write_outputs = [&]() {
         if (from_file) bench::write_report_dir(out_dir, report);
         if (a.has("report")) {
@@ -319,88 +288,52 @@ int run(const std::vector<std::string>& argv) {
             write_file_atomic(a.get("report") + ".json", report.dump(1));
         }
     };
-
-    report["complete"] = mine == 0;
-    write_outputs();  // a shard with no runs (N > runs) still leaves its (empty) results
     g_interrupted = 0;
-    auto old_handler = std::signal(SIGINT, on_sigint);
+    struct RestoreSignal {
+        void (*old)(int);
+        ~RestoreSignal() { std::signal(SIGINT, old); }
+    } restore{std::signal(SIGINT, on_sigint)};
+    size_t done = 0, mine = 0;
+    const size_t planned = bench::plan_runs(e).size();
+    for (size_t k = 0; k < planned; ++k) mine += shard.owns(k);
     Progress progress("runs", mine, a.has("quiet"));
     std::vector<std::pair<std::string, Profiler::Stats>> summary;
-    std::optional<Scene> scene;
-    size_t scene_of = size_t(-1), done = 0;
-    json data_info = json::array();
-    for (size_t k = 0; k < runs.size() && !g_interrupted; ++k) {
-        if (!shard.owns(k)) continue;
-        const bench::Run& run = runs[k];
-        if (scene_of != run.data) {
-            scene.reset();
-            scene = load_data_set(a, e, run.data);
-            scene_of = run.data;
-            json d = {{"source", scene->source},
-                      {"lines", scene->lines.line_count()},
-                      {"points", scene->lines.point_count()},
-                      {"mesh_triangles", scene->mesh ? scene->mesh->index.size() / 3 : 0}};
-            data_info.push_back(d);
-            for (double t : base.time.times())  // an empty picture times nothing worth knowing
-                if (t < scene->lines.time_min() || t > scene->lines.time_max()) {
-                    std::fprintf(stderr, "warning: time %g s is outside %s's %g..%g s: few or no lines are drawn\n", t,
-                                 scene->source.c_str(), scene->lines.time_min(), scene->lines.time_max());
-                    break;
-                }
-            report["data"] = data_info;
-        }
-        const auto& g = e.graphs[run.graph];
-        RenderOptions opt = base;
-        opt.graph_path = resolve_graph_path(g.graph);
-        opt.sets = e.sets;
-        opt.sets.insert(opt.sets.end(), g.sets.begin(), g.sets.end());
-        if (!e.sweep.param.empty()) opt.sets.push_back(e.sweep.param + "=" + run.sweep_value);
-        opt.size = parse_size(run.size);
-        RenderResult r;
-        std::string image;
-        try {
-            r = render(rt, *scene, opt);
-            if (images) {  // what the time bought: one frame, at the first time, written
-                RenderOptions io = opt;
-                io.time = parse_time_range(std::to_string(base.time.times().front()));
-                io.repeat = 1;
-                io.warmup = 0;
-                io.write_images = true;
-                io.out_dir = out_dir + "/images/run" + std::to_string(k);
-                RenderResult ir = render(rt, *scene, io);
-                for (const auto& f : ir.files)
-                    if (image.empty() && fs::path(f).extension() == ".png")
-                        image = fs::relative(f, out_dir).generic_string();
-            }
-        } catch (const GraphError& ex) {
-            for (const auto& d : ex.diagnostics) std::fprintf(stderr, "%s\n", d.str().c_str());
-            std::fprintf(stderr, "%s", rt.plugin_problems_note().c_str());
-            std::signal(SIGINT, old_handler);
-            return 1;
-        }
-        const std::string title = run.label + " — " + run.size + ", " + std::to_string(scene->lines.line_count()) + " lines";
-        if (!a.has("quiet") || !from_file) std::printf("%s\n", r.profiler.table(title).c_str());
-        summary.push_back({run.label + "  " + run.size, r.profiler.frame_ms()});
-        json meta = {{"index", k},           {"label", run.label},    {"graph_label", g.label},
-                     {"graph", g.graph},     {"graph_path", opt.graph_path}, {"size", run.size},
-                     {"sweep_value", run.sweep_value}, {"sets", opt.sets}, {"data", scene->source},
-                     {"renderer", rt.gl->renderer()}};
-        if (!image.empty()) meta["image"] = image;
-        report["timing_backend"] = r.profiler.backend_description();
-        report["runs"].push_back(bench::run_entry(r.profiler, meta));
-        report["complete"] = ++done == mine;
+    std::string source;
+    bench::ExperimentHooks hooks;
+    hooks.load_data = [&](size_t d) { return load_data_set(a, e, d); };
+    hooks.stop = [] { return g_interrupted != 0; };
+    hooks.on_report = [&](const json& r, const bench::RunDone* run) {
+        report = r;
         write_outputs();  // after every run: an interrupted experiment keeps what it finished
-        progress.update(done, run.label);
+        if (!run) return;
+        const std::string title = run->run.label + " — " + run->run.size + ", " +
+                                  std::to_string(run->scene.lines.line_count()) + " lines";
+        if (!a.has("quiet") || !from_file) std::printf("%s\n", run->profiler.table(title).c_str());
+        summary.push_back({run->run.label + "  " + run->run.size, run->profiler.frame_ms()});
+        source = run->scene.source;
+        done = run->done;
+        progress.update(done, run->run.label);
+    };
+    try {
+        report = bench::run_experiment(rt, e, how, hooks);
+    } catch (const GraphError& ex) {
+        for (const auto& d : ex.diagnostics) std::fprintf(stderr, "%s\n", d.str().c_str());
+        std::fprintf(stderr, "%s", rt.plugin_problems_note().c_str());
+        return 1;
     }
-    std::signal(SIGINT, old_handler);
     progress.finish(std::to_string(done) + " runs");
 
-    std::printf("summary (%s; %s)\n", rt.gl->renderer().c_str(), scene ? scene->source.c_str() : "");
+    std::printf("summary (%s; %s)\n", rt.gl->renderer().c_str(), source.c_str());
     std::printf("  %-40s %10s %10s %10s %8s\n", "run", "median ms", "p5 ms", "p95 ms", "fps");
     for (const auto& [label, f] : summary)
         std::printf("  %-40s %10.2f %10.2f %10.2f %8.1f\n", label.c_str(), f.median, f.p5, f.p95,
                     f.median > 0 ? 1000.0 / f.median : 0.0);
     if (from_file) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", out_dir.c_str());
+    if (a.has("plots"))
+        if (const std::string err = bench::write_matplotlib_plots(out_dir); !err.empty()) {
+            std::fprintf(stderr, "error: --plots: %s\n", err.c_str());
+            return 1;
+        }
     if (a.has("report")) std::fprintf(stderr, "wrote %s.csv and %s.json\n", a.get("report").c_str(), a.get("report").c_str());
     if (g_interrupted) {
         std::fprintf(stderr, "interrupted after %zu of %zu runs; the files hold the finished runs\n", done, mine);

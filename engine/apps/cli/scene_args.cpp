@@ -18,28 +18,38 @@ void add_scene_options(Args& a) {
         .option("time-step", "SECONDS", "0", "text rows: seconds between samples (0: 0.01)");
 }
 
-Scene load_scene(const Args& a, bool quiet) {
+SceneSource scene_source(const Args& a) {
+    SceneSource s;
+    s.data = a.get("data");
+    s.mesh = a.get("mesh");
+    s.phantom = a.get("phantom");
+    s.time_array = a.get("time-array");
+    s.velocity_array = a.get("velocity-array");
+    s.time_step = a.number("time-step");
+    return s;
+}
+
+Scene load_scene(const SceneSource& src, bool quiet) {
     Scene scene;
-    if (a.get("data").empty()) {
+    if (src.data.empty()) {
         // Generated once (tracing takes a while on two cores), then read from the cache.
-        std::string preset = a.get("phantom");
-        FractionProgress bar("phantom '" + preset + "'", quiet);
-        scene = phantom::load_or_make_phantom(preset, bar.callback());
+        FractionProgress bar("phantom '" + src.phantom + "'", quiet);
+        scene = phantom::load_or_make_phantom(src.phantom, bar.callback());
         bar.finish(std::to_string(scene.lines.line_count()) + " lines");
     } else {
         io::LoadOptions o;
-        o.time_array = a.get("time-array");
-        o.velocity_array = a.get("velocity-array");
-        o.time_step = a.number("time-step");
+        o.time_array = src.time_array;
+        o.velocity_array = src.velocity_array;
+        o.time_step = src.time_step;
         io::LoadReport rep;
-        scene.lines = io::load_pathlines(a.get("data"), o, &rep);
-        scene.source = a.get("data");
-        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", a.get("data").c_str(), w.c_str());
+        scene.lines = io::load_pathlines(src.data, o, &rep);
+        scene.source = src.data;
+        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", src.data.c_str(), w.c_str());
     }
-    if (!a.get("mesh").empty()) {
+    if (!src.mesh.empty()) {
         io::LoadReport rep;
-        scene.mesh = io::load_mesh(a.get("mesh"), &rep);
-        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", a.get("mesh").c_str(), w.c_str());
+        scene.mesh = io::load_mesh(src.mesh, &rep);
+        for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", src.mesh.c_str(), w.c_str());
     }
     if (!quiet)
         std::fprintf(stderr, "data: %s — %zu lines, %zu points, t %.2f..%.2f s, speed %.3g..%.3g%s\n", scene.source.c_str(),

@@ -6,10 +6,25 @@
 
 #include <pathlet/scene.hpp>
 
+#include <string>
+
 namespace pathlet::cli {
 
+// What to load, as the options say it; also how an experiment's data set and the Python
+// module name their data.
+struct SceneSource {
+    std::string data;             // pathline file; "" = the built-in phantom
+    std::string mesh;             // wall mesh file (optional)
+    std::string phantom = "study";
+    std::string time_array, velocity_array;
+    double time_step = 0;         // text rows: seconds between samples (0: 0.01)
+};
+
 void add_scene_options(Args& a);
-// Loads what the options say; prints a one-line summary and any repair warnings to stderr.
-Scene load_scene(const Args& a, bool quiet);
+SceneSource scene_source(const Args& a);
+// Loads what the source says; unless quiet, prints a one-line summary. Repair warnings go to
+// stderr either way (a file that needed repairs should say so).
+Scene load_scene(const SceneSource& src, bool quiet);
+inline Scene load_scene(const Args& a, bool quiet) { return load_scene(scene_source(a), quiet); }
 
 }  // namespace pathlet::cli

@@ -1,0 +1,47 @@
+#include "plots.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <vector>
+
+#ifndef PATHLET_PYTHON
+#define PATHLET_PYTHON "python3"
+#endif
+
+namespace pathlet::cli::bench {
+
+std::string write_matplotlib_plots(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    // build/bin/pathlet -> build/python (the package next to the module); installed, the
+    // package is in the interpreter's site-packages already.
+    const fs::path tree = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "python";
+    std::string pythonpath;
+    if (!ec && fs::is_regular_file(tree / "pathlet" / "plot.py")) {
+        pythonpath = tree.string();
+        if (const char* old = std::getenv("PYTHONPATH"); old && *old) pythonpath += ":" + std::string(old);
+    }
+    const std::string python = PATHLET_PYTHON, results = dir + "/results.json";
+    std::vector<std::string> args = {python, "-m", "pathlet.plot", results, "--out", dir};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid < 0) return "cannot start " + python;
+    if (pid == 0) {
+        if (!pythonpath.empty()) setenv("PYTHONPATH", pythonpath.c_str(), 1);
+        execvp(argv[0], argv.data());
+        _exit(127);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) return "lost the plot process";
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return python + " not found (install python3-matplotlib)";
+    return python + " -m pathlet.plot failed (needs python3-matplotlib and the pathlet package; see above)";
+}
+
+}  // namespace pathlet::cli::bench

@@ -1,0 +1,231 @@
+#include "measure.hpp"
+
+#include "rt_ao.hpp"
+
+#include "executor.hpp"
+#include "util/atomic_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace pathlet::quality {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// What the patched graph binds, or why it cannot be measured.
+struct Patch {
+    std::string why_not;  // non-empty: not measurable
+    std::string line_id, normal_depth, ao;
+};
+
+Patch not_measurable(const std::string& why) {
+    Patch p;
+    p.why_not = why;
+    return p;
+}
+
+json read_json(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot read");
+    std::stringstream s;
+    s << in.rdbuf();
+    try {
+        return json::parse(s.str(), nullptr, true, /*ignore_comments=*/true);
+    } catch (const json::exception& e) {
+        throw std::runtime_error(path + ": not valid JSON: " + e.what());
+    }
+}
+
+// Binds gbuffer.line_id and the AO that reaches the image, and keeps them (outputs without
+// capture) so the compiler does not cull them.
+Patch patch_graph(json& g) {
+    Patch p;
+    json* gbuffer = nullptr;
+    json* bilateral = nullptr;
+    json* lineao = nullptr;
+    for (json& pass : g["passes"]) {
+        const std::string type = pass.value("type", "");
+        if (type == "bilateral") bilateral = &pass;
+        if (type == "lineao") lineao = &pass;
+    }
+    if (!lineao) return not_measurable("no AO in this graph (no lineao pass)");
+    // The G-buffer is whichever line pass writes what lineao reads as normal_depth: gbuffer,
+    // geometric_fade, fade_core or a fade of yours (every kit G-buffer pass has line_id).
+    const json& lin = (*lineao)["inputs"];
+    const std::string nd = lin.contains("normal_depth") ? lin["normal_depth"].get<std::string>() : "";
+    for (json& pass : g["passes"])
+        if (pass.contains("outputs") && pass["outputs"].value("normal_depth", "") == nd && !nd.empty()) gbuffer = &pass;
+    if (!gbuffer) return not_measurable("no G-buffer pass feeding lineao (no line id and depth per pixel to compare frames by)");
+    json& outs = (*gbuffer)["outputs"];
+    if (!outs.contains("normal_depth")) return not_measurable("gbuffer's normal_depth is not bound");
+    p.normal_depth = outs["normal_depth"];
+    if (outs.contains("line_id")) {
+        p.line_id = outs["line_id"];
+    } else {
+        p.line_id = "quality_line_id";
+        outs["line_id"] = p.line_id;
+        g["resources"][p.line_id] = {{"format", "r32i"}};
+    }
+    if (bilateral && (*bilateral)["outputs"].contains("ao_smooth")) {
+        p.ao = (*bilateral)["outputs"]["ao_smooth"];  // already bound (variant2_oit_ao)
+    } else if (bilateral) {
+        p.ao = "quality_ao";
+        (*bilateral)["outputs"]["ao_smooth"] = p.ao;
+        g["resources"][p.ao] = {{"format", "r16f"}};
+    } else {
+        p.ao = (*lineao)["outputs"]["ao"];
+    }
+    for (const std::string& r : {p.line_id, p.normal_depth, p.ao}) g["outputs"].push_back({{"resource", r}});
+    return p;
+}
+
+// Reads a texture's first channel, top row first (as read_texture does).
+std::vector<int32_t> read_ids(const Texture& t) {
+    std::vector<int32_t> v(size_t(t.width) * t.height);
+    glGetTextureImage(t.id, 0, GL_RED_INTEGER, GL_INT, GLsizei(v.size() * 4), v.data());
+    std::vector<int32_t> flipped(v.size());
+    for (int y = 0; y < t.height; ++y)
+        std::copy_n(&v[size_t(t.height - 1 - y) * t.width], t.width, &flipped[size_t(y) * t.width]);
+    return flipped;
+}
+
+struct Captured {
+    FrameSample sample;
+    std::vector<glm::vec3> normal;  // view space
+    double time = 0;
+};
+
+// Tubes of the visible pathlets at time t: the points of each line within [t - window, t].
+std::vector<Tube> visible_tubes(const Pathlines& lines, double t, double window, float radius) {
+    std::vector<Tube> tubes;
+    for (const LineRange& r : lines.lines) {
+        Tube tube;
+        tube.radius = radius;
+        for (uint32_t i = r.first; i < r.first + r.count; ++i) {
+            const double ti = lines.time[i];
+            if (window <= 0 || (ti >= t - window && ti <= t)) tube.points.push_back(lines.position[i]);
+        }
+        if (tube.points.size() >= 2) tubes.push_back(std::move(tube));
+    }
+    return tubes;
+}
+
+// Ray-traced AO per covered pixel: the pixel's 3D point from its linear depth through the
+// camera (exact inverse of engine/lines/shaders/line_common.glsl), its normal to world space.
+std::vector<float> reference_ao(const Captured& c, const Camera& cam, const RayTracedAo& rt, int rays,
+                                float max_distance, float offset) {
+    const FrameSample& f = c.sample;
+    std::vector<float> out(f.size(), 1.0f);
+    const glm::mat4 inv_view = glm::inverse(cam.view);
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const size_t i = size_t(y) * f.width + x;
+            if (f.line_id[i] < 0) continue;
+            const float nx = (x + 0.5f) / f.width * 2 - 1, ny = 1 - (y + 0.5f) / f.height * 2;  // top row first
+            const float eye = cam.near_plane + f.depth[i] * (cam.far_plane - cam.near_plane);
+            const glm::vec4 view(nx * eye / cam.proj[0][0], ny * eye / cam.proj[1][1], -eye, 1.0f);
+            const glm::vec3 p = glm::vec3(inv_view * view);
+            const glm::vec3 n = glm::normalize(glm::mat3(inv_view) * c.normal[i]);
+            out[i] = rt.ambient(p + n * offset, n, rays, max_distance, uint32_t(i + 1));
+        }
+    return out;
+}
+
+}  // namespace
+
+Image error_image(const FrameSample& f, const std::vector<float>& err) {
+    Image img;
+    img.width = f.width;
+    img.height = f.height;
+    img.channels = 4;
+    img.pixels.assign(f.size() * 4, 1.0f);
+    for (size_t i = 0; i < f.size(); ++i) {
+        const float e = std::min(1.0f, err[i] * 2.0f);  // 0.5 error = full red
+        const bool line = f.line_id[i] >= 0;
+        img.pixels[i * 4 + 0] = line ? 1.0f : 0.9f;
+        img.pixels[i * 4 + 1] = line ? 1.0f - e : 0.9f;
+        img.pixels[i * 4 + 2] = line ? 1.0f - e : 0.9f;
+    }
+    return img;
+}
+
+QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOptions& q) {
+    QualityResult res;
+    json g = read_json(q.graph_path);
+    res.graph = g.value("name", fs::path(q.graph_path).stem().string());
+    Patch patch = patch_graph(g);
+    if (!patch.why_not.empty()) {
+        res.not_measured = patch.why_not;
+        return res;
+    }
+    if (q.time.times().size() < 2) throw std::invalid_argument("--time must give at least two frames");
+    RenderOptions opt;
+    opt.size = q.size;
+    opt.time = q.time;
+    opt.sets = q.sets;
+    opt.write_images = false;
+    opt.quiet = true;
+    opt.warmup = 1;
+    fs::create_directories(q.work_dir);
+    // A dot file in the work folder, gone however the run ends.
+    opt.graph_path = (fs::path(q.work_dir) / ("." + res.graph + ".quality.json")).string();
+    write_file_atomic(opt.graph_path, g.dump(2));
+    struct Remove {
+        std::string p;
+        ~Remove() {
+            std::error_code ec;
+            fs::remove(p, ec);
+        }
+    } remove_patched{opt.graph_path};
+
+    std::vector<Captured> frames;
+    const std::vector<double> times = opt.time.times();
+    RenderResult rendered = render(rt, scene, opt, [&](const Executor& ex, size_t frame) {
+        Captured c;
+        c.time = times[std::min(frame, times.size() - 1)];
+        const Texture ao = ex.texture(patch.ao), nd = ex.texture(patch.normal_depth), id = ex.texture(patch.line_id);
+        const Image ai = read_texture(ao.id, ao.width, ao.height, 0, 1), ni = read_texture(nd.id, nd.width, nd.height, 0, 4);
+        FrameSample& f = c.sample;
+        f.width = ao.width;
+        f.height = ao.height;
+        f.line_id = read_ids(id);
+        f.ao = ai.pixels;
+        f.depth.resize(f.size());
+        c.normal.resize(f.size());
+        for (size_t i = 0; i < f.size(); ++i) {
+            f.depth[i] = ni.pixels[i * 4 + 3];
+            c.normal[i] = glm::vec3(ni.pixels[i * 4], ni.pixels[i * 4 + 1], ni.pixels[i * 4 + 2]);
+            if (glm::dot(c.normal[i], c.normal[i]) < 0.01f) f.line_id[i] = -1;  // halo-less background
+        }
+        frames.push_back(std::move(c));
+    });
+
+    std::vector<FrameSample> samples;
+    for (const Captured& c : frames) samples.push_back(c.sample);
+    res.flicker = measure_flicker(samples, q.depth_tolerance);
+
+    const json& vars = rendered.compiled.variables;
+    const double window = vars.contains("window") ? vars["window"].get<double>() : 1.0;
+    float width = vars.contains("line_width") ? vars["line_width"].get<float>() : 0.0f;
+    if (width <= 0) width = GpuScene::auto_line_width(scene.lines.bounds());
+    const Captured& last = frames.back();
+    const Camera cam = frame_bounds(scene.bounds(), opt.size);
+    RayTracedAo tracer(visible_tubes(scene.lines, last.time, window, 0.5f * width));
+    res.reach = q.max_distance * width;
+    res.segments = tracer.segments();
+    res.reference = reference_ao(last, cam, tracer, q.rays, res.reach, 0.05f * width);
+    res.error = measure_ao_error(last.sample, res.reference);
+    res.frames = frames.size();
+    res.first_time = frames.front().time;
+    res.last_time = last.time;
+    res.last = last.sample;
+    return res;
+}
+
+}  // namespace pathlet::quality

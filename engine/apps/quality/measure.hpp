@@ -1,0 +1,52 @@
+#pragma once
+// `pathlet quality` as a function (also the Python module's pathlet.quality): the graph run
+// with two extra bindings added in memory (the G-buffer's line_id and bilateral's ao_smooth,
+// the AO that reaches the image), read back after every frame; flicker over the frames and
+// the error of the last frame's AO against a ray-traced AO of the visible pathlets.
+#include "ao_error.hpp"
+#include "flicker.hpp"
+#include "frame_sample.hpp"
+
+#include "image_io.hpp"
+#include "renderer.hpp"
+#include "runtime.hpp"
+
+#include <pathlet/scene.hpp>
+
+#include <string>
+#include <vector>
+
+namespace pathlet::quality {
+
+struct QualityOptions {
+    std::string graph_path;         // a graph file (resolve shipped names first)
+    std::vector<std::string> sets;  // --set overrides
+    glm::ivec2 size{320, 180};
+    TimeRange time;                 // at least two frames
+    int rays = 256;                 // ray-traced AO: rays per pixel
+    float max_distance = 10;        // ray length in line widths
+    float depth_tolerance = 0.002f; // flicker: largest change of linear depth that counts as unchanged
+    std::string work_dir;           // where the patched copy of the graph lives while it runs
+};
+
+struct QualityResult {
+    std::string graph;        // the graph's name
+    std::string not_measured; // non-empty: why this graph has nothing to measure (no AO)
+    size_t frames = 0;
+    double first_time = 0, last_time = 0;
+    FlickerStats flicker;
+    AoError error;                  // of the last frame, abs_error per pixel
+    FrameSample last;               // the last frame's AO, line ids and depth
+    std::vector<float> reference;   // ray-traced AO of the last frame (1 on background)
+    float reach = 0;                // ray length in world units
+    size_t segments = 0;            // tube segments traced
+};
+
+// Throws GraphError (bad graph or --set), std::invalid_argument (fewer than two frames) and
+// whatever rendering throws. The patched graph file is removed however it ends.
+QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOptions& opt);
+
+// The per-pixel error as a picture: white 0, red >= 0.5, light grey background.
+Image error_image(const FrameSample& f, const std::vector<float>& abs_error);
+
+}  // namespace pathlet::quality
