@@ -268,9 +268,12 @@ TEST(Cli, KilledMidRenderLeavesOnlyCompleteFiles) {
     // leaves complete PNGs under their final names; the next render clears the stale temps.
     fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_runs" / "killed";
     fs::remove_all(dir);
-    const std::string cmd = "timeout -s KILL 2 " + std::string(PATHLET_CLI) + " render isl --data " +
+    // Killed once its first frame is on disk (however slow the machine), mid-way through later ones.
+    const std::string cmd = "bash -c '" + std::string(PATHLET_CLI) + " render isl --data " +
                             src("tests/engine/data/two_lines.vtk") + " --time 0:1000:0.01 --size 320x240 --quiet --out " +
-                            dir.string() + " >/dev/null 2>&1";
+                            dir.string() + " >/dev/null 2>&1 & pid=$!; for i in $(seq 1200); do " +
+                            "ls " + dir.string() + "/isl/*.png >/dev/null 2>&1 && break; sleep 0.1; done; sleep 0.5; " +
+                            "kill -KILL $pid; wait $pid'";
     int status = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 137) << "the render should have been killed";
     size_t complete = 0;
