@@ -25,7 +25,8 @@ int run(const std::vector<std::string>& argv) {
     a.option("describe", "TYPE", "", "print the parameters and pins of one pass type")
         .multi("plugin-dir", "DIR", "also load plugins from DIR (before PATHLET_PLUGIN_PATH and the built-in folder)")
         .flag("json", "print the declarations as JSON (for tools and docs)")
-        .flag("markdown", "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them "
+        .flag("markdown", "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them; "
+                          "alone: the index of every pass type, as passes/README.md embeds it "
                           "(scripts/update-pass-docs.sh)")
         .example("pathlet passes", "list all pass types")
         .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
@@ -44,6 +45,10 @@ int run(const std::vector<std::string>& argv) {
         const auto inst = with_default_hooks(*t);
         std::fputs((a.has("markdown") ? inst->markdown() : inst->describe()).c_str(), stdout);
         return 0;
+    }
+    if (a.has("markdown")) {
+        std::fputs(index_markdown(rt.registry.all()).c_str(), stdout);
+        return rt.host.problems().empty() ? 0 : 1;
     }
     if (a.has("json")) {
         json out = json::array();

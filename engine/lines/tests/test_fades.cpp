@@ -324,6 +324,18 @@ TEST(PassDocs, ReadmeTablesMatchTheDeclarations) {
         ++checked;
     }
     EXPECT_GE(checked, 10u);
+    // The index in passes/README.md: every built-in pass, one row each.
+    std::vector<const PassTypeInfo*> builtin;
+    for (const PassTypeInfo* t : rt().registry.all())
+        if (fs::is_directory(kSrc + "/passes/" + t->type)) builtin.push_back(t);
+    std::ifstream in(kSrc + "/passes/README.md");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string begin = "<!-- pathlet passes --markdown -->\n\n", end = "\n<!-- end of generated tables -->";
+    const size_t a = text.find(begin), b = text.find(end);
+    ASSERT_NE(a, std::string::npos) << "passes/README.md lacks the index; run scripts/update-pass-docs.sh";
+    EXPECT_EQ(text.substr(a + begin.size(), b - a - begin.size()), index_markdown(builtin))
+        << "passes/README.md is out of date: run scripts/update-pass-docs.sh";
+    EXPECT_EQ(builtin.size(), checked);
 }
 
 // ---- aorta_backface: the wall as context behind the lines ---------------------------------

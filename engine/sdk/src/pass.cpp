@@ -249,6 +249,20 @@ std::string PassTypeInfo::markdown() const {
     return s.str();
 }
 
+std::string index_markdown(const std::vector<const PassTypeInfo*>& types) {
+    std::ostringstream s;
+    s << "| pass | what it does | inputs | outputs |\n|---|---|---|---|\n";
+    for (const PassTypeInfo* t : types) {
+        std::vector<std::string> in, out;
+        for (const auto& p : t->pins)
+            if (!p.internal) (p.dir == PinDir::Input ? in : out).push_back("`" + p.name + "`" + (p.optional ? "?" : ""));
+        s << "| [`" << t->type << "`](" << t->type << "/README.md) | " << md_cell(t->doc) << " | "
+          << (in.empty() ? "" : join(in)) << " | " << join(out) << " |\n";
+    }
+    s << "\n`?`: optional (a graph may leave it unbound).\n";
+    return s.str();
+}
+
 PassTypeBuilder::PassTypeBuilder(std::string type, std::string doc) {
     info_.type = std::move(type);
     info_.doc = std::move(doc);

@@ -103,6 +103,10 @@ struct PassTypeInfo {
     std::string markdown() const;  // parameter and pin tables for the pass README (`--markdown`)
 };
 
+// One row per pass type (linked to its folder, what it does, its inputs and outputs): the
+// index in passes/README.md (`pathlet passes --markdown`).
+std::string index_markdown(const std::vector<const PassTypeInfo*>& types);
+
 // Fluent builder: the single place a pass type states what it is.
 class PassTypeBuilder {
 public:
