@@ -43,6 +43,9 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                      "level of detail: points a Douglas-Peucker simplification of the line drops within this many "
                      "pixels (at the line's nearest distance) are not drawn; 0 = every point, exact",
                      {.pixels = true})
+        .param_bool("cull", true,
+                    "draw only the line chunks that can be seen: frustum culling and two-phase occlusion culling "
+                    "against this pass's depth (the picture stays the same); false: every chunk of the window")
         .param_hook("color_hook", "color", defaults.color,
                     "colour hook: a GLSL file (on the shader path or next to the graph) defining vec4 "
                     "line_color_hook(vec4 rgba, LinePoint p); empty = the colour map as it is, opaque")

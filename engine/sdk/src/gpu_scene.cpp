@@ -118,6 +118,7 @@ void GpuScene::upload(const Scene& scene) {
         }
     }
     lod_.build(pl, smax_ - smin_);
+    chunks_.build(pl);
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
                          v.empty() ? nullptr : v.data(), 0);

@@ -28,6 +28,7 @@
 #include <pathlet/pass.hpp>
 #include <pathlet/shader.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -68,37 +69,62 @@ PassTypeBuilder gbuffer_pass_type(const std::string& type, const std::string& do
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks = {},
                        const std::vector<std::string>& defines = {});
 
+class ChunkCuller;
+
 // Draws the pathlets of the current time window: sets the kit's uniforms on `prog` (in use),
-// uploads the per-pathlet buffer, draws with depth testing, reports the segment count.
+// uploads the per-pathlet buffer, draws with depth testing, reports the segment count. With the
+// pass's `cull` parameter (kit parameter, on by default) only the chunks that can be seen:
+// frustum culling, and with a depth-tested framebuffer two-phase occlusion culling against the
+// pass's own depth (engine/lines/src/chunk_culler.hpp); the picture is the same.
 class Drawer {
 public:
-    Drawer() = default;
+    Drawer();
     Drawer(const Drawer&) = delete;
     Drawer& operator=(const Drawer&) = delete;
     ~Drawer();
     void draw(PassContext& ctx, const ShaderProgram& prog);
-    // The same uniforms and buffer without drawing (for a pass that issues its own draws).
+    // The same uniforms and buffer without drawing, for a pass that issues its own draws of
+    // ranges() (no culling), with the level of detail's strips in strips().
     void prepare(PassContext& ctx, const ShaderProgram& prog);
     const GpuScene::Ranges& ranges() const { return ranges_; }
+    const LineLod::Strips& strips() const { return strips_[0]; }
     // Depth test of the draw (default GL_LEQUAL). GL_ALWAYS keeps every fragment, e.g. for OIT,
-    // while a bound depth target still records where fragments landed.
+    // while a bound depth target still records where fragments landed (and nothing is
+    // occlusion-culled).
     void set_depth_func(GLenum f) { depth_func_ = f; }
 
-    // Segments drawn in the last frame (after the level of detail).
-    size_t segments() const { return lod_on_ ? strips_.segments : ranges_.segments; }
+    // Segments drawn in the last frame (after culling and the level of detail).
+    size_t segments() const { return segments_; }
 
 private:
+    void begin(PassContext& ctx, const ShaderProgram& prog);
+    void select(const GpuScene& scene, const GpuScene::Ranges& r, int slot);
+    void draw_ranges(PassContext& ctx, const GpuScene::Ranges& r, int slot);
+    // The pass's depth as the farthest depth per tile (into farthest_, tiles_), on the GPU.
+    void tile_depth(PassContext& ctx, const ShaderProgram& prog, GLuint depth, glm::ivec2 size);
+
     GLenum depth_func_ = GL_LEQUAL;
     GpuScene::Ranges ranges_;
-    LineLod::Strips strips_;
-    bool lod_on_ = false;
-    GLuint index_buffer_ = 0;
-    size_t index_capacity_ = 0;
+    bool lod_on_ = false, width_hooked_ = false;
+    struct {
+        float px = 0, scale = 1;
+        bool perspective = true;
+        glm::vec3 eye{0};
+    } lod_;
+    LineLod::Strips strips_[2];  // phase 1 and phase 2 (uploaded to their own index buffers)
+    GLuint index_buffer_[2] = {0, 0};
+    size_t index_capacity_[2] = {0, 0};
+    size_t segments_ = 0;
+    float width_ = 0;
     std::vector<glm::vec4> pathlets_;
     GLuint buffer_ = 0;
     size_t capacity_ = 0;
     GLuint block_ = 0;  // the LineKit uniform block's buffer
     float typical_window_ = -1.0f, typical_length_ = 1.0f;  // cached per window length
+    std::unique_ptr<ChunkCuller> culler_;
+    GLuint tile_tex_ = 0, tile_fbo_ = 0;  // the farthest depth per tile, for the culler
+    glm::ivec2 tiles_{0};
+    std::vector<float> farthest_;
 };
 
 // The unit of the kit's arc-length measures (u_typical_length in every kit program): a typical

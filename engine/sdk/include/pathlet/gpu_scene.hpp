@@ -4,6 +4,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include <pathlet/line_chunks.hpp>
 #include <pathlet/line_lod.hpp>
 #include <pathlet/scene.hpp>
 
@@ -67,6 +68,8 @@ public:
 
     // Level of detail of the lines (pathlet/line_lod.hpp), built at upload.
     const LineLod& lod() const { return lod_; }
+    // The lines in chunks with bounding boxes (pathlet/line_chunks.hpp): what the kit culls.
+    const LineChunks& chunks() const { return chunks_; }
 
     Bounds bounds() const { return bounds_; }
     // The line width passes use when theirs is 0 ("auto"): 0.5 % of the bounding-box
@@ -97,6 +100,7 @@ private:
     const Scene* cpu_ = nullptr;
     std::vector<float> arc_;  // per point, arc length from its line's first point
     LineLod lod_;
+    LineChunks chunks_;
     GLuint line_vao_ = 0, line_vbo_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;

@@ -1,0 +1,129 @@
+// The line kit's culling (lines::Drawer, chunk_culler.hpp): chunks hidden behind the lines in
+// front or outside the view are not drawn, and the picture is what it was: the same pixels,
+// at rest and while the camera orbits and the window moves (two-phase culling catches what
+// the previous frame's visibility missed). OIT (depth ALWAYS) is frustum-culled only.
+#include "frame_capture.hpp"
+#include "executor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pathlet;
+
+namespace {
+
+Runtime& rt() { return test_runtime(); }
+const std::string kGraphs = std::string(PATHLET_SOURCE_DIR) + "/graphs/";
+
+// Eight layers of 41 parallel lines, each layer a closed sheet at the width the test draws
+// (0.3, lines 0.1 apart) facing the camera (the default framing looks along the thinnest
+// extent, z, from its negative side): the front layer (z = -1.4) is larger than the others
+// and hides them.
+const Scene& layered_sheets() {
+    static const Scene scene = [] {
+        Scene s;
+        for (int layer = 0; layer < 8; ++layer)
+            for (int row = 0; row <= 40; ++row) {
+                s.lines.lines.push_back({uint32_t(s.lines.position.size()), 101});
+                const bool front = layer == 7;
+                for (int k = 0; k <= 100; ++k) {
+                    const float t = 0.1f * float(k), x = front ? 1.2f * t - 1.0f : t;
+                    const float y = front ? 0.12f * float(row) - 0.4f : 0.1f * float(row) + 0.02f * float(layer);
+                    s.lines.position.push_back({x, y, -0.2f * float(layer)});
+                    s.lines.time.push_back(t);
+                    s.lines.velocity.push_back({1.0f, 0.0f, 0.0f});
+                }
+            }
+        s.source = "8 layered sheets of lines";
+        return s;
+    }();
+    return scene;
+}
+
+struct CullRun {
+    std::vector<Image> frames;
+    double occluded = 0, phase2 = 0, segments = 0;
+};
+
+// Every frame of `graph` over [t0, t1], orbiting, with the line pass's culling on or off.
+CullRun render_run(const std::string& graph, const std::string& pass, bool cull, const std::string& resource, double t0,
+               double t1, double orbit, double window = 2.0) {
+    RenderOptions o;
+    o.graph_path = kGraphs + graph;
+    o.size = {192, 128};
+    o.sets = {pass + ".cull=" + std::string(cull ? "true" : "false"), "overlay=false", "line_width=0.3",
+              "window=" + std::to_string(window)};
+    o.time = {t0, t1, 0.5};
+    o.orbit_deg_per_s = orbit;
+    o.warmup = 0;
+    o.write_images = false;
+    o.quiet = true;
+    CullRun run;
+    RenderResult r = render(rt(), layered_sheets(), o, [&](const Executor& e, size_t) {
+        run.frames.push_back(read_resource(e.texture(resource)));
+    });
+    auto stat = [&](const std::string& name) {  // mean per measured frame
+        for (const auto& p : r.profiler.passes())
+            if (p.name == pass && p.stats.count(name)) return p.stats.at(name);
+        return 0.0;
+    };
+    run.occluded = stat("chunks_occluded");
+    run.phase2 = stat("chunks_phase2");
+    run.segments = stat("segments");
+    return run;
+}
+
+// Largest RMS (0..255) between the runs' frames, over pixels either covers.
+double worst_rms(const CullRun& a, const CullRun& b) {
+    double worst = 0;
+    for (size_t f = 0; f < a.frames.size(); ++f) {
+        const Image &x = a.frames[f], &y = b.frames[f];
+        double sq = 0;
+        size_t n = 0;
+        for (size_t i = 0; i < x.pixels.size(); ++i) {
+            sq += double(x.pixels[i] - y.pixels[i]) * double(x.pixels[i] - y.pixels[i]);
+            ++n;
+        }
+        worst = std::max(worst, 255.0 * std::sqrt(sq / double(std::max<size_t>(n, 1))));
+    }
+    return worst;
+}
+
+}  // namespace
+
+TEST(Cull, HiddenChunksAreNotDrawnAndThePictureStaysTheSame) {
+    // At rest, whole lines: the front sheet hides the seven behind it.
+    const CullRun on = render_run("variant1_lineao.json", "gbuffer", true, "final", 4, 5, 0, 0.0);
+    const CullRun off = render_run("variant1_lineao.json", "gbuffer", false, "final", 4, 5, 0, 0.0);
+    ASSERT_EQ(on.frames.size(), 3u);
+    EXPECT_GT(on.occluded, 100) << "the front sheet hides the chunks behind it";
+    EXPECT_LT(on.segments, 0.5 * off.segments) << "culling draws fewer segments";
+    EXPECT_EQ(worst_rms(on, off), 0.0) << "the same picture";
+}
+
+TEST(Cull, WhileTheCameraOrbitsAndTheWindowMovesThePictureStaysTheSame) {
+    // Five frames, the camera turning 20 degrees a second and the 2 s window moving.
+    const CullRun on = render_run("variant1_lineao.json", "gbuffer", true, "final", 4, 6, 20);
+    const CullRun off = render_run("variant1_lineao.json", "gbuffer", false, "final", 4, 6, 20);
+    ASSERT_EQ(on.frames.size(), 5u);
+    EXPECT_GT(on.phase2, 0) << "pathlets entering the window are drawn in phase 2";
+    EXPECT_LE(worst_rms(on, off), 0.5) << "the picture is the same within 0.5/255 RMS";
+}
+
+TEST(Cull, IllustratedStreamlinesTooAndAJumpIsCaughtInPhaseTwo) {
+    // An orbit of 200 degrees a second: 100 degrees between frames, a jump every frame.
+    const CullRun on = render_run("isl.json", "isl", true, "final", 4, 6, 200, 0.0);
+    const CullRun off = render_run("isl.json", "isl", false, "final", 4, 6, 200, 0.0);
+    EXPECT_GT(on.occluded, 0);
+    EXPECT_GT(on.phase2, 0) << "what the jump uncovers is drawn in phase 2";
+    EXPECT_LE(worst_rms(on, off), 0.5);
+}
+
+TEST(Cull, TransparencyIsNotOcclusionCulled) {
+    // fill_list keeps every fragment (depth ALWAYS): nothing may be hidden, the lists are the same.
+    const CullRun on = render_run("variant2_oit.json", "fill_list", true, "final", 4, 6, 20);
+    const CullRun off = render_run("variant2_oit.json", "fill_list", false, "final", 4, 6, 20);
+    EXPECT_EQ(on.occluded, 0);
+    EXPECT_EQ(worst_rms(on, off), 0.0);
+}
