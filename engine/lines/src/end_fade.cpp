@@ -54,7 +54,10 @@ PassTypeBuilder& declare_fade_params(PassTypeBuilder& b, double tail_fade, doubl
         .param_float("fade_floor", 0.0, 0.0, 1.0, "value left at the very end (0 = nothing)");
 }
 
-void EndFade::setup(PassContext& ctx) { reference_ = typical_pathlet_length(ctx.scene().cpu(), ctx.params().f("window")); }
+void EndFade::setup(PassContext& ctx) {
+    const Scene& s = ctx.scene().cpu();
+    reference_ = typical_pathlet_length(s, s.lines.timeless ? 0.0f : ctx.params().f("window"));  // streamlines: whole
+}
 
 void EndFade::set_uniforms(PassContext& ctx, const ShaderProgram& prog) const {
     const Params& p = ctx.params();

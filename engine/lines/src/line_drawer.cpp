@@ -56,7 +56,7 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     const Camera& cam = ctx.camera();
     const GpuScene& scene = ctx.scene();
     const float window = p.f("window");
-    const bool windowed = window > 0.0f;
+    const bool windowed = window > 0.0f && !scene.cpu().lines.timeless;  // streamlines: whole
     const double t = ctx.time();
     // CPU sub-ranges per line: far cheaper on llvmpipe than culling in the GS or the FS.
     scene.ranges(windowed ? t - window : 0.0, windowed ? t : 0.0, ranges_);
@@ -89,8 +89,9 @@ void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     prog.set("u_proj", cam.proj);
     prog.set("u_window", glm::vec2(float(t) - window, float(t)));
     prog.set("u_windowed", windowed ? 1 : 0);
-    scene.note_line_width(scene.line_width(p.f("line_width")));
-    prog.set("u_half_width", 0.5f * scene.line_width(p.f("line_width")));
+    width_ = scene.line_width(p.f("line_width"), p.f("width_factor"));
+    scene.note_line_width(width_);
+    prog.set("u_half_width", 0.5f * width_);
     prog.set("u_max_width_hook", GpuScene::kMaxWidthHook);
     prog.set("u_halo", p.f("halo"));
     prog.set("u_halo_min_px", p.f("halo_min_px") * ctx.pixel_scale());
@@ -124,6 +125,7 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     ctx.stat("segments", double(segments()));
     ctx.stat("segments_exact", double(ranges_.segments));  // before the level of detail
     ctx.stat("lines", double(ranges_.first.size()));
+    ctx.stat("line_width", double(width_));  // world units, before the width hook (tests turn it into pixels)
 }
 
 namespace {

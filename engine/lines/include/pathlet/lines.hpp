@@ -45,8 +45,9 @@ struct Hooks {
 const std::vector<std::string>& colormaps();
 int colormap_index(const std::string& name);
 
-// The shared line parameters: window, line_width, halo, halo_color, halo_depth, colormap,
-// speed_min, speed_max, background, lod. Declared here once for every line pass.
+// The shared line parameters: window, line_width, width_factor, halo, halo_min_px, halo_color,
+// halo_depth, colormap, speed_min, speed_max, background, lod. Declared here once for every
+// line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b);
 // LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id and edge.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
@@ -80,6 +81,7 @@ public:
 
 private:
     GLenum depth_func_ = GL_LEQUAL;
+    float width_ = 0.0f;  // world units, this frame
     GpuScene::Ranges ranges_;
     LineLod::Strips strips_;
     bool lod_on_ = false;
