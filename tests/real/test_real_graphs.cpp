@@ -49,7 +49,7 @@ Scene traced(const std::string& field_path, float mask_threshold) {
     o.threads = 2;
     Scene s;
     s.lines = trace::trace_pathlines(field, o);
-    s.mesh = trace::marching_cubes(field.grid, field.mask, 0.5f);
+    s.mesh = trace::vessel_wall(field);
     s.source = field_path;
     return s;
 }

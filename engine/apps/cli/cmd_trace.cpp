@@ -39,6 +39,8 @@ int run(std::vector<std::string> argv) {
         .option("output", "OUT", "", "pathlines to write (.vtp, .vtk, .pathlet); required")
         .short_name('o')
         .option("wall", "OUT.glb", "", "also write the vessel wall (marching cubes of the mask) as .glb/.gltf/.stl/.obj")
+        .option("wall-pieces", "SHARE", "0.01",
+                "drop wall pieces with fewer triangles than SHARE of the largest (a thresholded scan's noise specks); 0 keeps all")
         .option("mask-threshold", "X", "", "vessel = scalars > X (e.g. 175 for carotid.vtk)")
         .option("velocity-scale", "S", "1", "multiply velocities (e.g. to convert units to world units/s)")
         .option("units", "LENGTH[,VELOCITY]", "",
@@ -90,6 +92,8 @@ int run(std::vector<std::string> argv) {
     if (!(o.step > 0) || !(o.max_dt > 0) || !(o.time_end > 0) || !(o.max_line_time > 0) || o.smooth_passes < 0 || o.threads < 0)
         throw UsageError("--step, --max-dt, --duration, --line-time must be > 0; --smooth, --threads >= 0");
     const float vscale = float(a.number("velocity-scale"));
+    const float wall_pieces = float(a.number("wall-pieces"));
+    if (!(wall_pieces >= 0.0f && wall_pieces <= 1.0f)) throw UsageError("--wall-pieces must lie in 0..1");
     const std::string units = units_option(a);
 
     {
@@ -105,16 +109,19 @@ int run(std::vector<std::string> argv) {
         trace::TraceStats st;
         Pathlines lines = trace::trace_pathlines(field, o, progress.callback(), &st);
         io::apply_units_option(lines.units, units);
-        if (!a.get("wall").empty()) {
-            if (field.mask.empty()) throw DataError(a.pos("FIELD") + ": no mask or --mask-threshold, so no wall to extract");
-            io::save_mesh(trace::marching_cubes(field.grid, field.mask, 0.5f, progress.callback()), a.get("wall"));
-        }
+        trace::PieceStats pieces;
+        if (!a.get("wall").empty())
+            io::save_mesh(trace::vessel_wall(field, wall_pieces, &pieces, progress.callback()), a.get("wall"));
         io::save_pathlines(lines, out, io::format_from_extension(out));
         progress.finish("done");
         std::fprintf(stderr, "pathlet trace: %zu lines, %zu points; %zu of %zu vessel voxels crossed; %zu seeds "
                              "(%zu too short, %zu too close); %.1f s\n",
                      lines.line_count(), lines.point_count(), st.covered_voxels, st.vessel_voxels, st.candidates,
                      st.rejected_short, st.rejected_close, progress.seconds());
+        if (pieces.pieces > pieces.kept)
+            std::fprintf(stderr, "pathlet trace: wall: kept %zu of %zu pieces (dropped %zu triangles in pieces under %g of the "
+                                 "largest; --wall-pieces 0 keeps them)\n",
+                         pieces.kept, pieces.pieces, pieces.dropped_triangles, double(wall_pieces));
         return 0;
     }
 }
