@@ -12,7 +12,7 @@ PKGS=(
   libembree-dev                                     # ray-traced AO reference of `pathlet quality` (Embree 3)
   xvfb                                              # window tests of `pathlet view` (private X server)
   libimgui-dev libstb-dev                           # the panels of `pathlet view` (Dear ImGui)
-  python3-numpy python3-pil                         # figure scripts (scripts/aa-figures.sh)
+  python3-numpy python3-pil                         # figure scripts (scripts/aa-figures.sh, real-data-sheet.sh)
   clang-14 libclang-rt-14-dev llvm-14               # sanitizer build and libFuzzer targets (scripts/sanitize.sh, fuzz.sh)
 )
 OPTIONAL=(ffmpeg)                                   # MP4 export, only if it installs

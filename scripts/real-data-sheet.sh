@@ -26,9 +26,9 @@ trap 'rm -rf "$TMP"' EXIT
 # name | label | data file | load options (for info and render) | wall
 SETS=(
   "aneurysm|aneurysm pathlines (text rows)|$REAL/aneurysm-pathlines/blood_flow||"
-  "arch|4DFlowNet aortic arch (traced, wall)|$TMP/arch.vtp||$TMP/arch.glb"
-  "carotid|carotid field (traced, wall)|$TMP/carotid.vtp||$TMP/carotid.glb"
-  "vmtk|vmtk aorta: centrelines + surface|$REAL/vmtk-abdominal-aorta/aorta-centerline.vtp|--streamlines|$REAL/vmtk-abdominal-aorta/aorta-surface.stl"
+  "arch|4DFlowNet aortic arch (traced, with wall)|$TMP/arch.vtp||$TMP/arch.glb"
+  "carotid|carotid field (traced, with wall)|$TMP/carotid.vtp||$TMP/carotid.glb"
+  "vmtk|vmtk abdominal aorta (centrelines, surface)|$REAL/vmtk-abdominal-aorta/aorta-centerline.vtp|--streamlines|$REAL/vmtk-abdominal-aorta/aorta-surface.stl"
   "fornix|fornix tracts (TrackVis .trk)|$REAL/fornix-tractography/tracks300.trk||"
 )
 # Graphs that draw lines (demo_blur draws a test pattern, no data).
@@ -69,8 +69,11 @@ for c, g in enumerate(graphs):
     d.text((left + c * W + 6, 6), g, fill=(30, 30, 30), font=font)
 for r, (name, label, t) in enumerate(sets):
     y = top + r * H
-    d.text((8, y + H // 2 - 18), label, fill=(30, 30, 30), font=font)
-    d.text((8, y + H // 2 + 2), t or "no time: whole lines", fill=(110, 110, 110), font=font)
+    title, _, detail = label.partition(" (")  # two lines: the data set, then how it was made
+    d.text((8, y + H // 2 - 30), title, fill=(30, 30, 30), font=font)
+    if detail:
+        d.text((8, y + H // 2 - 10), "(" + detail, fill=(30, 30, 30), font=font)
+    d.text((8, y + H // 2 + 12), t or "no time: whole lines", fill=(110, 110, 110), font=font)
     for c, g in enumerate(graphs):
         files = sorted(glob.glob(os.path.join(tmp, name, g, "*.png")))
         if files:

@@ -54,13 +54,7 @@ using namespace pathlet::io;
 
 namespace {
 
-struct IoBadInput : ::testing::Test {
-    std::string dir = iotest::temp_dir();
-    std::string put(const std::string& name, const std::string& bytes) {
-        std::string p = dir + "/" + name;
-        iotest::write_bytes(p, bytes);
-        return p;
-    }
+struct IoBadInput : iotest::FileTest {
     // Loads and expects a DataError that names the file, a location and `needle`.
     std::string expect_error(const std::string& path, const std::string& needle, const LoadOptions& o = {}) {
         try {
@@ -79,11 +73,7 @@ struct IoBadInput : ::testing::Test {
         ADD_FAILURE() << path << ": loaded, expected an error containing '" << needle << "'";
         return "";
     }
-    static bool has(const LoadReport& r, const std::string& needle) {
-        for (auto& w : r.warnings)
-            if (w.find(needle) != std::string::npos) return true;
-        return false;
-    }
+    static bool has(const LoadReport& r, const std::string& needle) { return iotest::reports(r, needle); }
 };
 
 const char* kAscii51 =
@@ -99,21 +89,7 @@ std::string replace(std::string s, const std::string& from, const std::string& t
 
 TEST_F(IoBadInput, TruncatedFilesEveryFormat) {
     Pathlines p = iotest::make_lines(6, 20);
-    using E = VtpWriteOptions::Encoding;
-    std::vector<std::pair<std::string, std::string>> files = {
-        {"a.vtk", write_vtk_legacy(p, {false, false})}, {"b.vtk", write_vtk_legacy(p, {true, false})},
-        {"c.vtk", write_vtk_legacy(p, {true, true})},
-    };
-    for (E e : {E::Ascii, E::Inline, E::AppendedRaw, E::AppendedBase64})
-        for (bool z : {false, true}) {
-            VtpWriteOptions o;
-            o.encoding = e;
-            o.zlib = z && e != E::Ascii;
-            files.push_back({"v" + std::to_string(int(e)) + std::to_string(z) + ".vtp", write_vtp(p, o)});
-        }
-    std::string native = dir + "/n.pathlet";
-    save_pathlines(p, native, PathlineFormat::Native);
-    files.push_back({"n.pathlet", iotest::read_bytes(native)});
+    auto files = iotest::every_writer(p);
     files.push_back({"t.trk", write_trk(p)});  // n_count declared
     files.push_back({"t.tck", write_tck(p)});  // the end marker declares the end
     for (auto& [name, bytes] : files) {

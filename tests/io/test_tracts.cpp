@@ -14,20 +14,8 @@ using namespace pathlet::io;
 
 namespace {
 
-struct IoTracts : ::testing::Test {
-    std::string dir = iotest::temp_dir();
-    std::string put(const std::string& name, const std::string& bytes) {
-        std::string p = dir + "/" + name;
-        iotest::write_bytes(p, bytes);
-        return p;
-    }
-    static bool has(const LoadReport& r, const std::string& needle) {
-        for (auto& w : r.warnings)
-            if (w.find(needle) != std::string::npos) return true;
-        for (auto& a : r.arrays)
-            if (a.find(needle) != std::string::npos) return true;
-        return false;
-    }
+struct IoTracts : iotest::FileTest {
+    static bool has(const LoadReport& r, const std::string& needle) { return iotest::reports(r, needle); }
     // Same lines and points within `tol` (the readers' repair step keeps every point here).
     static void expect_positions(const Pathlines& got, const Pathlines& want, float tol) {
         ASSERT_EQ(got.line_count(), want.line_count());

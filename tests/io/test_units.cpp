@@ -15,18 +15,8 @@ using namespace pathlet::io;
 
 namespace {
 
-struct IoUnits : ::testing::Test {
-    std::string dir = iotest::temp_dir();
-    std::string put(const std::string& name, const std::string& bytes) {
-        std::string p = dir + "/" + name;
-        iotest::write_bytes(p, bytes);
-        return p;
-    }
-    static bool has(const LoadReport& r, const std::string& needle) {
-        for (auto& w : r.warnings)
-            if (w.find(needle) != std::string::npos) return true;
-        return false;
-    }
+struct IoUnits : iotest::FileTest {
+    static bool has(const LoadReport& r, const std::string& needle) { return iotest::reports(r, needle); }
 };
 
 const char* kLines =
@@ -35,18 +25,7 @@ const char* kLines =
 TEST_F(IoUnits, EveryWriterWritesThemAndEveryReaderReadsThemBack) {
     Pathlines p = iotest::make_lines(3, 6);
     p.units = {"mm", "s", "m s-1"};  // a space inside: VTK legacy ASCII escapes it as %20
-    std::vector<std::pair<std::string, std::string>> files = {
-        {"a.vtk", write_vtk_legacy(p, {false, false})}, {"b.vtk", write_vtk_legacy(p, {true, false})},
-        {"c.vtk", write_vtk_legacy(p, {true, true})}, {"n.pathlet", encode_native(p)}};
-    using E = VtpWriteOptions::Encoding;
-    for (E e : {E::Ascii, E::Inline, E::AppendedRaw, E::AppendedBase64})
-        for (bool z : {false, true}) {
-            VtpWriteOptions o;
-            o.encoding = e;
-            o.zlib = z && e != E::Ascii;
-            files.push_back({"v" + std::to_string(int(e)) + std::to_string(z) + ".vtp", write_vtp(p, o)});
-        }
-    for (auto& [name, bytes] : files) {
+    for (auto& [name, bytes] : iotest::every_writer(p)) {
         Pathlines q = load_pathlines(put(name, bytes));
         EXPECT_EQ(q.units, p.units) << name;
         iotest::expect_same(q, p);
