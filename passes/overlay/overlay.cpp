@@ -1,9 +1,10 @@
 // overlay: what the study shows in every figure, drawn over the finished image: the animation
 // time ("t = 4.50 s", top left; no unit where the data's time has none) and the speed legend
-// (the colour bar with its range and the data's velocity unit, right edge, vertically centred;
-// for the direction colour map an x/y/z key), sized from the output height so it is crisp and equally
-// large at any resolution. Text is rasterised with FreeType (text_raster.*); with show = false
-// the image passes through bit for bit.
+// (the colour bar with its range and the data's velocity unit, right edge, vertically
+// centred; for the direction colour map an x/y/z key), sized from the output height so it is
+// crisp and equally large at any resolution. Streamlines without time get neither clock nor
+// speed. Text is rasterised with FreeType (text_raster.*); with show = false the image passes
+// through bit for bit.
 #include "text_raster.hpp"
 
 #include <pathlet/gpu_scene.hpp>
