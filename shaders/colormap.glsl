@@ -1,5 +1,6 @@
 // Speed colour maps for line passes. `which` follows the `colormap` enum of the line passes:
-// 0 green_red (the study: green slow -> yellow -> red fast), 1 viridis, 2 coolwarm, 3 grey.
+// 0 green_red (the study: green slow -> yellow -> red fast), 1 viridis, 2 coolwarm, 3 grey,
+// 4 direction (not a map of speed: the line kit colours by the tangent, colormap_direction).
 // u is the normalised speed in [0,1]; values outside are clamped.
 #ifndef PATHLET_COLORMAP_GLSL
 #define PATHLET_COLORMAP_GLSL
@@ -8,6 +9,18 @@ const int COLORMAP_GREEN_RED = 0;
 const int COLORMAP_VIRIDIS = 1;
 const int COLORMAP_COOLWARM = 2;
 const int COLORMAP_GREY = 3;
+const int COLORMAP_DIRECTION = 4;
+
+// Direction colouring (tractography's convention): RGB = |dx|, |dy|, |dz| of the unit
+// tangent in world (data) axes, so x runs red, y green, z blue whichever way a line goes.
+vec3 colormap_direction(vec3 world_tangent) { return abs(normalize(world_tangent)); }
+
+bool colormap_is_direction(int which) {
+#ifdef LINE_COLORMAP
+    which = LINE_COLORMAP;  // folds away in the line kit's specialised programs
+#endif
+    return which == COLORMAP_DIRECTION;
+}
 
 // Green -> yellow -> red through saturated mid tones (no muddy olive in the middle).
 vec3 colormap_green_red(float u) {

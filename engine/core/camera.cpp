@@ -12,7 +12,9 @@
 namespace pathlet {
 
 void finish_camera(Camera& c, const Bounds& b, glm::ivec2 size) {
-    float r = std::max(b.valid() ? b.radius() : 1.0f, 1e-3f);
+    // Relative to the data only (a degenerate box, one point, falls back to 1): no floor in
+    // world units, so a scene framed at any scale gets the same picture.
+    float r = b.valid() && b.radius() > 0.0f ? b.radius() : 1.0f;
     float d = glm::length(c.eye - (b.valid() ? b.center() : c.target));
     c.near_plane = std::max(d - 1.05f * r, 0.01f * r);
     c.far_plane = d + 1.05f * r;
@@ -39,7 +41,7 @@ Camera frame_bounds(const Bounds& b0, glm::ivec2 size, float fov_y_deg) {
     c.up[up_axis] = 1.0f;
     float aspect = size.y > 0 ? float(size.x) / float(size.y) : 1.0f;
     // Distance so the bounding sphere fits both vertically and horizontally.
-    float r = std::max(b.radius(), 1e-3f);
+    float r = b.radius() > 0.0f ? b.radius() : 1.0f;
     float half_v = glm::radians(fov_y_deg) * 0.5f;
     float half_h = std::atan(std::tan(half_v) * aspect);
     float dist = r / std::sin(std::min(half_v, half_h)) * 0.92f;

@@ -69,7 +69,7 @@ public:
         glProgramUniform1fv(id, prog_->loc("u_delta"), L.count, L.delta);
         glProgramUniform2fv(id, prog_->loc("u_level_dir"), L.count, glm::value_ptr(L.start[0]));
         prog_->set("u_lod_offset", int(std::lround(std::log2(std::max(ctx.pixel_scale(), 1.0f)))));
-        prog_->set("u_step_width", ctx.scene().line_width(p.f("line_width")));
+        prog_->set("u_step_width", ctx.scene().line_width(p.f("line_width"), p.f("width_factor")));
         const bool pyramid = p.b("use_pyramid") && ctx.connected("pyramid");
         prog_->set("u_from_pyramid", pyramid ? 1 : 0);
         prog_->set("u_max_lod", pyramid ? ctx.texture("pyramid").mips - 1 : 0);
@@ -141,6 +141,8 @@ pathlet::PassTypeInfo lineao_type() {
                      "world units per radius step (0 = auto, as the gbuffer's): r_l grows by zoom(P)*line_width px "
                      "per level; set it to the "
                      "gbuffer's line width so one step is one line width on screen")
+        .param_float("width_factor", 1.0, 0.01, 100.0,
+                     "the auto width (line_width 0) times this, as the line pass's: tie both to one graph variable")
         .param_enum("radius_growth", "linear", {"linear", "running_sum"},
                     "linear: r_l = r0 + l*w (paper eq. 6); running_sum: r0 + (0, 2.5, 6, 10.5, ..)*w, the authors' "
                     "1.5/4/7.5 sum (w = line width on screen)")

@@ -1,8 +1,10 @@
 // overlay: what the study shows in every figure, drawn over the finished image: the animation
-// time ("t = 4.50 s", top left) and the speed legend (the colour bar with its range and unit,
-// right edge, vertically centred), sized from the output height so it is crisp and equally
-// large at any resolution. Text is rasterised with FreeType (text_raster.*); with show = false
-// the image passes through bit for bit.
+// time ("t = 4.50 s", top left; no unit where the data's time has none) and the speed legend
+// (the colour bar with its range and the data's velocity unit, right edge, vertically
+// centred; for the direction colour map an x/y/z key), sized from the output height so it is
+// crisp and equally large at any resolution. Streamlines without time get neither clock nor
+// speed. Text is rasterised with FreeType (text_raster.*); with show = false the image passes
+// through bit for bit.
 #include "text_raster.hpp"
 
 #include <pathlet/gpu_scene.hpp>
@@ -76,16 +78,28 @@ public:
         float smin = p.f("speed_min") > 0.0f ? p.f("speed_min") : scene.speed_min();
         float smax = p.f("speed_max") > 0.0f ? p.f("speed_max") : scene.speed_max();
         if (!(smax > smin)) smax = smin + 1.0f;  // as the line kit does
-        const std::string unit = p.s("speed_unit");
+        // Units as the data says them (or the user); none shown that nobody knows.
+        const pathlet::Units& units = scene.cpu().lines.units;
+        const std::string unit = p.s("speed_unit").empty() ? units.velocity : p.s("speed_unit");
+        time_unit_ = units.time.empty() ? "" : " " + units.time;
+        legend_min_ = smin;
+        legend_max_ = smax;
+        direction_ = p.s("colormap") == "direction";
+        timeless_ = scene.cpu().lines.timeless;  // streamlines: no time, no speed to show
         max_label_.set(raster_->render(format_speed(smax)));
         min_label_.set(raster_->render(format_speed(smin)));
-        unit_label_.set(raster_->render(unit.empty() ? "speed" : "speed (" + unit + ")"));
+        unit_label_.set(raster_->render(direction_ ? "direction" : unit.empty() ? "speed" : "speed (" + unit + ")"));
+        for (int k = 0; k < 3; ++k) axis_label_[k].set(raster_->render(std::string(1, char('x' + k))));
     }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
         pathlet::Texture src = ctx.texture("color"), dst = ctx.texture("final");
         glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width, dst.height, 1);
+        if (!timeless_ && !direction_) {  // the range the legend shows (or would): tests check it against the data
+            ctx.stat("legend_min", double(legend_min_));
+            ctx.stat("legend_max", double(legend_max_));
+        }
         if (!p.b("show")) return;
         ctx.bind_framebuffer({"final"});
         glEnable(GL_BLEND);
@@ -98,13 +112,26 @@ public:
         const glm::vec4 ink(p.v3("text_color"), 1.0f);
         const float m = std::round(0.6f * float(font_px_));  // margin from the image border
 
-        if (p.b("time")) {
+        if (p.b("time") && !timeless_) {
             char buf[64];
-            std::snprintf(buf, sizeof buf, "t = %.2f s", ctx.time());
+            std::snprintf(buf, sizeof buf, "t = %.2f%s", ctx.time(), time_unit_.c_str());
             time_label_.set(raster_->render(buf));
             text(time_label_, m, m, ink);
         }
-        if (p.b("legend")) {
+        if (p.b("legend") && direction_) {
+            // Direction colours (RGB = |dx|, |dy|, |dz|): a swatch per axis under the title.
+            const float sw = std::round(0.8f * float(font_px_)), gap = std::round(0.3f * float(font_px_));
+            const float x1 = float(size.x) - m, x0 = x1 - sw;
+            float y = std::round(0.5f * float(size.y) - 2.0f * sw);
+            text(unit_label_, x1 - float(unit_label_.width), y - gap - float(unit_label_.height), ink);
+            for (int k = 0; k < 3; ++k, y += std::round(1.4f * sw)) {
+                glm::vec4 c(0.0f, 0.0f, 0.0f, 1.0f);
+                c[k] = 1.0f;
+                solid(x0 - 1, y - 1, x1 + 1, y + sw + 1, ink);
+                solid(x0, y, x1, y + sw, c);
+                text(axis_label_[k], x0 - gap - float(axis_label_[k].width), y + 0.5f * sw - 0.6f * float(axis_label_[k].ascent), ink);
+            }
+        } else if (p.b("legend") && !timeless_) {
             // A vertical bar at the right edge, centred: the data sits in the middle at the
             // default framing. Numbers to its left, right-aligned; the unit above.
             const float bar_w = std::round(0.55f * float(font_px_));
@@ -150,7 +177,10 @@ private:
     std::unique_ptr<overlay::TextRaster> raster_;
     std::string font_file_;
     int font_px_ = 0;
-    Label time_label_, max_label_, min_label_, unit_label_;
+    Label time_label_, max_label_, min_label_, unit_label_, axis_label_[3];
+    std::string time_unit_;
+    float legend_min_ = 0, legend_max_ = 0;
+    bool direction_ = false, timeless_ = false;
 };
 
 }  // namespace
@@ -163,12 +193,14 @@ PATHLET_PLUGIN("overlay", {
                   .param_bool("time", true, "the time label \"t = 4.50 s\", top left")
                   .param_bool("legend", true, "the speed colour bar with its range and unit, right edge")
                   .param_enum("colormap", "green_red", pathlet::lines::colormaps(),
-                              "the line pass's colour map (tie both to one graph variable)")
+                              "the line pass's colour map (tie both to one graph variable); direction shows an x/y/z key")
                   .param_float("speed_min", 0.0, -1.0, 1e9,
                                "speed at the bar's bottom, as the line pass's; <= 0: the data's 1st percentile")
                   .param_float("speed_max", 0.0, -1.0, 1e9,
                                "speed at the bar's top, as the line pass's; <= 0: the data's 99th percentile")
-                  .param_string("speed_unit", "mm/s", "unit of the data's speeds, shown with the legend")
+                  .param_string("speed_unit", "",
+                                "unit shown with the legend; empty = the data's velocity unit where its file says it "
+                                "(else the legend just says \"speed\")")
                   .param_float("font_px", 0.0, 0.0, 400.0, "text height in pixels; 0 = auto: output height / 28")
                   .param_string("font", "", "a TrueType/OpenType font file; empty = DejaVu Sans (fonts-dejavu-core)")
                   .param_color("text_color", {0.12f, 0.12f, 0.12f}, "colour of the text and the bar's frame")

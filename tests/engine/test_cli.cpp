@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -155,6 +156,39 @@ TEST(Cli, DataCommandsRejectBadInputWithExitCodes) {
     r = pathlet_cli("info " + bad.string());
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnitsOptionAndTractsAsAUserUsesThem) {
+    fs::path dir = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_tracts";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string rows = (dir / "rows.txt").string();
+    std::ofstream(rows) << "0 0 0 1 0 0 2 0 1\n0 1 0 1 1 0 2 1 1 3 1 2\n";
+    CliRun r = pathlet_cli("info " + rows + " --units mm --time-step 0.5");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("units:     length mm, time s, velocity mm/s"), std::string::npos) << r.out;
+    for (const char* bad : {"a,b,c", ",", "'x y '"}) {
+        r = pathlet_cli("info " + rows + " --units " + bad);
+        EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+        EXPECT_NE(r.err.find("--units"), std::string::npos) << r.err;
+    }
+    EXPECT_EQ(pathlet_cli("render --data " + rows + " --units a,b,c --no-images --quiet").code, 2);
+    // A .tck renders as one frame of whole lines without --time; --pseudo-time animates it.
+    const std::string tck = (dir / "t.tck").string();
+    {
+        std::ofstream f(tck, std::ios::binary);
+        f << "mrtrix tracks\ndatatype: Float32LE\nfile: . 49\nEND\n";  // 49 bytes of header
+        const float v[] = {0, 0, 0, 10, 0, 0, 10, 5, 0, NAN, NAN, NAN, 0, 5, 0, 0, 5, 8, NAN, NAN, NAN, INFINITY, INFINITY, INFINITY};
+        f.write(reinterpret_cast<const char*>(v), sizeof v);
+    }
+    r = pathlet_cli("render tracts_lineao --data " + tck + " --size 64x36 --quiet --out " + (dir / "out").string());
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "out" / "tracts_lineao" / "00000.png"));
+    EXPECT_FALSE(fs::exists(dir / "out" / "tracts_lineao" / "00001.png")) << "whole lines: one frame";
+    r = pathlet_cli("render --data " + tck + " --pseudo-time --size 64x36 --no-images --quiet");
+    EXPECT_EQ(r.code, 0) << r.err;
+    r = pathlet_cli("info " + tck + " --pseudo-time");
+    EXPECT_NE(r.out.find("time:      0 .. "), std::string::npos) << r.out;
 }
 
 TEST(Cli, EveryShippedGraphValidates) {

@@ -7,6 +7,7 @@
 #include "io/native_cache.hpp"
 #include "io/pathline_formats.hpp"
 #include "io/raw_polylines.hpp"
+#include "io/tract_formats.hpp"
 #include "trace/field_readers.hpp"
 #include "camera.hpp"
 
@@ -31,6 +32,10 @@ void run(std::string_view bytes) {
     io::read_text_rows(bytes, f, {}, r);
 #elif defined(FUZZ_NATIVE)
     io::decode_native(bytes, f, r);
+#elif defined(FUZZ_TRK)
+    io::read_trk(bytes, f, r);
+#elif defined(FUZZ_TCK)
+    io::read_tck(bytes, f, r);
 #elif defined(FUZZ_GLTF)
     io::read_gltf(bytes, false, f, r);
 #elif defined(FUZZ_GLB)

@@ -4,6 +4,7 @@
 #include "io/pathline_formats.hpp"
 #include "io/pathline_io.hpp"
 #include "io/native_cache.hpp"
+#include "io/tract_formats.hpp"
 #include <pathlet/scene.hpp>
 
 #include <filesystem>
@@ -52,6 +53,28 @@ int main(int argc, char** argv) {
         }
     put(out / "text_rows", "rows.txt", "0 0 0 1 0 0 2 0 1\n0 1 0 1 1 0 2 1 1 3 1 2\n");
     put(out / "native", "lines.pathlet", io::encode_native(p));
+    Pathlines pu = p;  // the units block and field data
+    pu.units = {"mm", "s", "mm/s"};
+    put(out / "native", "units.pathlet", io::encode_native(pu));
+    put(out / "vtk_legacy", "units_binary.vtk", io::write_vtk_legacy(pu, {true, false}));
+    put(out / "vtp", "units.vtp", io::write_vtp(pu, {}));
+    {
+        io::TrkWriteOptions o;
+        o.dims = {8, 8, 8};
+        put(out / "trk", "v2.trk", io::write_trk(p, o));
+        o.version = 1;
+        put(out / "trk", "v1.trk", io::write_trk(p, o));
+        o.version = 2;
+        o.big_endian = true;
+        o.scalars = 2;
+        o.properties = 1;
+        o.voxel_order = "LPS";
+        o.vox_to_ras = glm::mat4(glm::vec4(-2, 0, 0, 0), glm::vec4(0, -2, 0, 0), glm::vec4(0, 0, 2, 0), glm::vec4(16, 16, 0, 1));
+        o.voxel_size = glm::vec3(2.0f);
+        put(out / "trk", "big_scalars.trk", io::write_trk(p, o));
+        put(out / "tck", "f32le.tck", io::write_tck(p));
+        put(out / "tck", "f64be.tck", io::write_tck(p, {.big_endian = true, .float64 = true}));
+    }
     Mesh m;
     m.position = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     m.index = {0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3};

@@ -1,5 +1,8 @@
 #include "io_test_util.hpp"
 
+#include "io/native_cache.hpp"
+#include "io/pathline_formats.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <cstdlib>
@@ -80,6 +83,29 @@ std::string real_data_dir() {
     const char* env = std::getenv("PATHLET_REAL_DATA_DIR");
     std::string d = env && *env ? env : std::string(PATHLET_SOURCE_DIR) + "/../shared/data/real";
     return fs::is_directory(d) ? d : "";
+}
+
+bool reports(const pathlet::io::LoadReport& r, const std::string& needle) {
+    for (const auto* list : {&r.warnings, &r.arrays})
+        for (const auto& w : *list)
+            if (w.find(needle) != std::string::npos) return true;
+    return false;
+}
+
+std::vector<std::pair<std::string, std::string>> every_writer(const pathlet::Pathlines& p) {
+    using namespace pathlet::io;
+    std::vector<std::pair<std::string, std::string>> files = {
+        {"a.vtk", write_vtk_legacy(p, {false, false})}, {"b.vtk", write_vtk_legacy(p, {true, false})},
+        {"c.vtk", write_vtk_legacy(p, {true, true})}, {"n.pathlet", encode_native(p)}};
+    using E = VtpWriteOptions::Encoding;
+    for (E e : {E::Ascii, E::Inline, E::AppendedRaw, E::AppendedBase64})
+        for (bool z : {false, true}) {
+            VtpWriteOptions o;
+            o.encoding = e;
+            o.zlib = z && e != E::Ascii;
+            files.push_back({"v" + std::to_string(int(e)) + std::to_string(z) + ".vtp", write_vtp(p, o)});
+        }
+    return files;
 }
 
 }  // namespace iotest

@@ -1,11 +1,15 @@
 // Helpers shared by the io tests: synthetic pathlines, a per-test temp dir, byte I/O.
 #pragma once
 
+#include "io/pathline_io.hpp"
+
 #include <pathlet/scene.hpp>
 
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace iotest {
 
@@ -23,5 +27,22 @@ void expect_same(const pathlet::Pathlines& a, const pathlet::Pathlines& b);
 
 // Directory with the shared real data, or "" when absent.
 std::string real_data_dir();
+
+// A test with a fresh directory: put(name, bytes) writes a file there and returns its path.
+struct FileTest : ::testing::Test {
+    std::string dir = temp_dir();
+    std::string put(const std::string& name, const std::string& bytes) const {
+        const std::string p = dir + "/" + name;
+        write_bytes(p, bytes);
+        return p;
+    }
+};
+
+// The bytes every pathline writer makes of `p`, named by format: VTK legacy ASCII, BINARY and
+// 5.1 (a/b/c.vtk), VTP in every encoding with and without zlib (vEZ.vtp), the native cache.
+std::vector<std::pair<std::string, std::string>> every_writer(const pathlet::Pathlines& p);
+
+// Whether one of the report's warnings (or array descriptions) contains `needle`.
+bool reports(const pathlet::io::LoadReport& r, const std::string& needle);
 
 }  // namespace iotest

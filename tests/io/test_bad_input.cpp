@@ -4,6 +4,7 @@
 // records the largest single allocation, so "no giant allocation" is checked, not assumed.
 #include "io/pathline_formats.hpp"
 #include "io/pathline_io.hpp"
+#include "io/tract_formats.hpp"
 #include "io/zlib_blocks.hpp"
 #include "io_test_util.hpp"
 
@@ -53,13 +54,7 @@ using namespace pathlet::io;
 
 namespace {
 
-struct IoBadInput : ::testing::Test {
-    std::string dir = iotest::temp_dir();
-    std::string put(const std::string& name, const std::string& bytes) {
-        std::string p = dir + "/" + name;
-        iotest::write_bytes(p, bytes);
-        return p;
-    }
+struct IoBadInput : iotest::FileTest {
     // Loads and expects a DataError that names the file, a location and `needle`.
     std::string expect_error(const std::string& path, const std::string& needle, const LoadOptions& o = {}) {
         try {
@@ -78,11 +73,7 @@ struct IoBadInput : ::testing::Test {
         ADD_FAILURE() << path << ": loaded, expected an error containing '" << needle << "'";
         return "";
     }
-    static bool has(const LoadReport& r, const std::string& needle) {
-        for (auto& w : r.warnings)
-            if (w.find(needle) != std::string::npos) return true;
-        return false;
-    }
+    static bool has(const LoadReport& r, const std::string& needle) { return iotest::reports(r, needle); }
 };
 
 const char* kAscii51 =
@@ -98,21 +89,9 @@ std::string replace(std::string s, const std::string& from, const std::string& t
 
 TEST_F(IoBadInput, TruncatedFilesEveryFormat) {
     Pathlines p = iotest::make_lines(6, 20);
-    using E = VtpWriteOptions::Encoding;
-    std::vector<std::pair<std::string, std::string>> files = {
-        {"a.vtk", write_vtk_legacy(p, {false, false})}, {"b.vtk", write_vtk_legacy(p, {true, false})},
-        {"c.vtk", write_vtk_legacy(p, {true, true})},
-    };
-    for (E e : {E::Ascii, E::Inline, E::AppendedRaw, E::AppendedBase64})
-        for (bool z : {false, true}) {
-            VtpWriteOptions o;
-            o.encoding = e;
-            o.zlib = z && e != E::Ascii;
-            files.push_back({"v" + std::to_string(int(e)) + std::to_string(z) + ".vtp", write_vtp(p, o)});
-        }
-    std::string native = dir + "/n.pathlet";
-    save_pathlines(p, native, PathlineFormat::Native);
-    files.push_back({"n.pathlet", iotest::read_bytes(native)});
+    auto files = iotest::every_writer(p);
+    files.push_back({"t.trk", write_trk(p)});  // n_count declared
+    files.push_back({"t.tck", write_tck(p)});  // the end marker declares the end
     for (auto& [name, bytes] : files) {
         // Cutting anywhere never crashes; the half-way cut must be reported.
         // Every format here declares its counts up front, so every cut must fail, naming the
@@ -401,4 +380,74 @@ TEST_F(IoBadInput, TheAllocationRecorderSeesAllocations) {
     auto big = std::make_unique<std::vector<char>>(size_t(64) << 20);
     EXPECT_GE(g_largest_alloc.load(), size_t(64) << 20);
     EXPECT_EQ(big->size(), size_t(64) << 20);
+}
+
+namespace {
+
+void put_i32(std::string& b, size_t at, int32_t v) { std::memcpy(b.data() + at, &v, 4); }
+void put_i16(std::string& b, size_t at, int16_t v) { std::memcpy(b.data() + at, &v, 2); }
+void put_f32(std::string& b, size_t at, float v) { std::memcpy(b.data() + at, &v, 4); }
+
+}  // namespace
+
+TEST_F(IoBadInput, TrackVisHeadersAndTracks) {
+    Pathlines p = iotest::make_lines(3, 5);
+    const std::string good = write_trk(p);
+    EXPECT_EQ(load_pathlines(put("ok.trk", good)).line_count(), 3u);
+    auto with = [&](auto change) {
+        std::string b = good;
+        change(b);
+        return b;
+    };
+    expect_error(put("a.trk", good.substr(0, 600)), "header is 1000 bytes but the file has only 600");
+    expect_error(put("b.trk", with([](std::string& b) { b[0] = 'X'; })), "magic \"TRACK\" is missing");
+    expect_error(put("c.trk", with([](std::string& b) { put_i32(b, 996, 999); })), "hdr_size is 999");
+    expect_error(put("d.trk", with([](std::string& b) { put_i32(b, 992, 3); })), "version 3 is not supported");
+    expect_error(put("e.trk", with([](std::string& b) { put_i16(b, 36, -2); })), "n_scalars -2 is out of range");
+    expect_error(put("f.trk", with([](std::string& b) { put_i16(b, 238, 5000); })), "n_properties 5000 is out of range");
+    expect_error(put("g.trk", with([](std::string& b) { put_f32(b, 16, 0.0f); })), "voxel size 0 must be positive");
+    expect_error(put("h.trk", with([](std::string& b) { put_f32(b, 444, NAN); })), "vox_to_ras holds a non-finite value");
+    expect_error(put("i.trk", with([](std::string& b) { put_i32(b, 988, -1); })), "n_count -1 is negative");
+    expect_error(put("j.trk", with([](std::string& b) { put_i32(b, 988, 7); })), "declares 7 tracks but the file ends after 3");
+    // The first track's point count: negative, or more than the file holds (no giant allocation).
+    expect_error(put("k.trk", with([](std::string& b) { put_i32(b, 1000, -4); })), "negative point count -4");
+    g_largest_alloc = 0;
+    expect_error(put("l.trk", with([](std::string& b) { put_i32(b, 1000, 2000000000); })), "declares 2000000000 points");
+    EXPECT_LT(g_largest_alloc.load(), size_t(64) << 20);
+    // n_scalars larger than the data: the points no longer fit.
+    expect_error(put("m.trk", with([](std::string& b) { put_i16(b, 36, 40); })), "file truncated, or a corrupt count");
+    // Extra bytes after the declared tracks: read, and said.
+    LoadReport r;
+    EXPECT_EQ(load_pathlines(put("n.trk", good + std::string(12, '\0')), {}, &r).line_count(), 3u);
+    EXPECT_TRUE(has(r, "ignored 12 bytes after the 3 tracks"));
+    // n_count 0 means "unknown": every track to the end of the file.
+    EXPECT_EQ(load_pathlines(put("o.trk", with([](std::string& b) { put_i32(b, 988, 0); }))).line_count(), 3u);
+    // NaN points are dropped and their track split, like every other reader (the repair step).
+    LoadReport r2;
+    Pathlines q = load_pathlines(put("p.trk", with([](std::string& b) { put_f32(b, 1004 + 12 * 2, NAN); })), {}, &r2);
+    EXPECT_EQ(q.line_count(), 4u);
+    EXPECT_TRUE(has(r2, "dropped 1 non-finite (NaN/inf) points in 1 lines (split into 1 extra lines)"));
+}
+
+TEST_F(IoBadInput, MrtrixTckHeadersAndData) {
+    Pathlines p = iotest::make_lines(3, 5);
+    const std::string good = write_tck(p);
+    EXPECT_EQ(load_pathlines(put("ok.tck", good)).line_count(), 3u);
+    auto sub = [&](const std::string& from, const std::string& to) { return replace(good, from, to); };
+    expect_error(put("a.tck", "mrtrix image\nEND\n"), "the first line must be 'mrtrix tracks'");
+    expect_error(put("b.tck", good.substr(0, good.find("END"))), "the header has no END line");
+    expect_error(put("c.tck", sub("datatype: Float32LE", "datatype: Int16LE")), "datatype 'Int16LE' is not supported");
+    expect_error(put("d.tck", sub("datatype: Float32LE\n", "")), "the header has no 'datatype:' line");
+    expect_error(put("e.tck", sub("file: . ", "file: other.dat ")), "the data must be in this file");
+    expect_error(put("f.tck", sub("file: . 00", "file: . 99")), "the data offset must lie between");
+    expect_error(put("g.tck", sub("count: 3\n", "count 3\n")), "is not 'key: value'");
+    expect_error(put("h.tck", good.substr(0, good.size() - 12)), "without the end-of-file marker");
+    // A wrong count is a warning (MRtrix writes it at the end: an interrupted write leaves 0).
+    LoadReport r;
+    EXPECT_EQ(load_pathlines(put("i.tck", sub("count: 3\n", "count: 5\n")), {}, &r).line_count(), 3u);
+    EXPECT_TRUE(has(r, "the header says count: 5 but the file holds 3 tracks"));
+    // A header without END within its first MiB is refused without reading on.
+    std::string endless = "mrtrix tracks\n";
+    while (endless.size() < (2u << 20)) endless += "key: value\n";
+    expect_error(put("j.tck", endless), "no END line in the first 1 MiB");
 }

@@ -5,6 +5,7 @@
 #include "frame_capture.hpp"
 #include "golden.hpp"
 #include "image_io.hpp"
+#include "image_probes.hpp"
 #include "renderer.hpp"
 
 #include <gtest/gtest.h>
@@ -208,6 +209,101 @@ TEST(Overlay, GoldenWithTimeAndLegend) {
     EXPECT_GT(bottom - top, 40) << "bar too short";
     EXPECT_GT(img.at(x, top + 1, 0), img.at(x, top + 1, 1)) << "fast end is red";
     EXPECT_GT(img.at(x, bottom - 1, 1), img.at(x, bottom - 1, 0)) << "slow end is green";
+}
+
+// Where two overlay frames differ: in the time label box (top left), the legend's title box
+// (right, above the bar's middle) and anywhere else.
+struct OverlayDiff {
+    size_t label = 0, title = 0, elsewhere = 0;
+};
+OverlayDiff overlay_diff(const Image& a, const Image& b) {
+    OverlayDiff d;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            bool diff = false;
+            for (int c = 0; c < 4; ++c) diff |= a.at(x, y, c) != b.at(x, y, c);
+            if (!diff) continue;
+            (x < 100 && y < 30 ? d.label : x >= 200 && y < 75 ? d.title : d.elsewhere) += 1;
+        }
+    return d;
+}
+
+TEST(Overlay, UnitsComeFromTheDataAndNoneIsInvented) {
+    const Scene& mm = two_speed_lines_scene();  // mm, s, mm/s
+    Scene none = mm, metres = mm;
+    none.lines.units = {};
+    metres.lines.units = {"m", "s", "m/s"};
+    auto shot = [](const Scene& s, std::vector<std::string> sets = {}) {
+        sets.push_back("window=3");
+        return render_image(s, "variant1_lineao", sets, {320, 180});
+    };
+    const Image a = shot(mm);
+    // No units known: "speed" without one and "t = 5.00" without "s"; nothing else moves.
+    OverlayDiff d = overlay_diff(a, shot(none));
+    EXPECT_GT(d.label, 10u) << "the time label must lose its unit";
+    EXPECT_GT(d.title, 10u) << "the legend's title must lose its unit";
+    EXPECT_EQ(d.elsewhere, 0u);
+    // Another velocity unit changes the title only.
+    d = overlay_diff(a, shot(metres));
+    EXPECT_EQ(d.label, 0u);
+    EXPECT_GT(d.title, 10u);
+    EXPECT_EQ(d.elsewhere, 0u);
+    // The user's unit where the data has none: the title of a data set that says mm/s.
+    d = overlay_diff(a, shot(none, {"overlay.speed_unit=mm/s"}));
+    EXPECT_EQ(d.title, 0u);
+    EXPECT_GT(d.label, 10u);
+}
+
+TEST(Overlay, StreamlinesShowNoTimeOrSpeedAndDirectionShowsItsKey) {
+    Scene tracts = two_speed_lines_scene();
+    tracts.lines.timeless = true;
+    auto shot = [&](std::vector<std::string> sets) { return render_image(tracts, "variant1_lineao", sets, {320, 180}); };
+    // Timeless lines: the overlay adds nothing (no clock, no speed).
+    EXPECT_EQ(max_abs_difference(shot({}), shot({"overlay=false"})), 0.0f);
+    // The direction colour map: an x/y/z key of pure red, green and blue swatches at the right.
+    tracts.lines.timeless = false;  // the key is shown for timed lines too
+    const Image key = render_image(tracts, "tracts_lineao", {}, {320, 180});  // direction by default
+    const Image bare = render_image(tracts, "tracts_lineao", {"overlay.legend=false"}, {320, 180});
+    auto is_pure = [](const Image& im, int x, int y, int c) {
+        return im.at(x, y, c) > 0.99f && im.at(x, y, (c + 1) % 3) < 0.01f && im.at(x, y, (c + 2) % 3) < 0.01f;
+    };
+    int pure[3] = {0, 0, 0};
+    for (int y = 0; y < key.height; ++y)
+        for (int x = 0; x < key.width; ++x)
+            for (int c = 0; c < 3; ++c) pure[c] += is_pure(key, x, y, c) && !is_pure(bare, x, y, c);
+    for (int c = 0; c < 3; ++c) EXPECT_GT(pure[c], 20) << "swatch " << "xyz"[c];
+}
+
+TEST(Direction, ALineTakesTheColourOfItsAxes) {
+    // Lines along x, along y and at 45 degrees in xy; the G-buffer colour at each line's centre
+    // is |tangent| in data axes: red, green, and both at 0.707.
+    Scene s;
+    const glm::vec3 dirs[3] = {{1, 0, 0}, {0, 1, 0}, {0.70710678f, 0.70710678f, 0}};
+    const glm::vec3 at[3] = {{5, 7, 0}, {-3, 2, 0}, {11, -3, 0}};
+    for (int i = 0; i < 3; ++i) {
+        LineRange r{uint32_t(s.lines.position.size()), 21};
+        for (int k = 0; k <= 20; ++k) {
+            s.lines.position.push_back(at[i] + (float(k) / 20.0f - 0.5f) * 6.0f * dirs[i]);
+            s.lines.velocity.push_back(dirs[i]);
+            s.lines.time.push_back(float(k));
+        }
+        s.lines.lines.push_back(r);
+    }
+    // The default framing looks along z with x up (the box's longest axis): view axes are not
+    // the data's, so a colour from the view-space tangent would swap red and green.
+    const Image c = render_image(s, "gbuffer_only", {"window=0", "gbuffer.colormap=direction", "line_width=0.6"}, {320, 180},
+                                 1, "color", /*square_on=*/false);
+    const Camera cam = frame_bounds(s.bounds(), {320, 180});
+    auto px = [&](glm::vec3 p) {
+        const glm::vec4 q = cam.proj * cam.view * glm::vec4(p, 1.0f);
+        return glm::ivec2(std::lround((0.5f + 0.5f * q.x / q.w) * 320 - 0.5f), std::lround((0.5f - 0.5f * q.y / q.w) * 180 - 0.5f));
+    };
+    const glm::vec3 want[3] = {{1, 0, 0}, {0, 1, 0}, {0.7071f, 0.7071f, 0}};
+    for (int i = 0; i < 3; ++i) {
+        const glm::ivec2 p = px(at[i]);
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(c.at(p.x, p.y, ch), want[i][ch], 0.02f) << "line " << i << " channel " << ch;
+    }
 }
 
 TEST(Overlay, TimeLabelFollowsTheClockAndNothingElseMoves) {

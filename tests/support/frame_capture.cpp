@@ -97,6 +97,7 @@ const Scene& helix_bundle_scene() {
         add([](double t) { return glm::vec3(4 * t, 12 + 0.5 * std::sin(0.5 * t), 0); },
             [](double t) { return glm::vec3(6, 0.375 * std::cos(0.5 * t), 0); });
         s.source = "synthetic helix bundle (tests/support)";
+        s.lines.units = {"mm", "s", "mm/s"};
         return s;
     }();
     return scene;
@@ -134,6 +135,7 @@ const Scene& two_speed_lines_scene() {
         add(-15.0f, 4.0f, 0.0f);
         add(0.0f, 1.0f, 4.0f);
         s.source = "two straight pathlets, fast and slow (tests/support)";
+        s.lines.units = {"mm", "s", "mm/s"};  // as the phantom's: the overlay shows them
         return s;
     }();
     return scene;

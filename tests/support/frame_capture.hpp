@@ -40,7 +40,8 @@ const Scene& helix_bundle_scene();
 const std::string& test_scratch_dir(const std::string& prefix);
 
 // Two straight pathlets, times 0..10 s (201 points each): a fast one, x = -15 + 4t on y = 0
-// (40 units long), and a slow one, x = t on y = 4 (10 units long).
+// (40 units long), and a slow one, x = t on y = 4 (10 units long). Units mm, s, mm/s (like
+// the helix bundle's).
 const Scene& two_speed_lines_scene();
 // Writes a camera path that looks down -z at (5, 2, 0) from 60 units with fovy 20 degrees and
 // +y up, so data x runs to the right; returns `path`.

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 using namespace pathlet;
@@ -101,4 +102,38 @@ TEST(MarchingCubes, BinaryMaskMergesVerticesAndRejectsWrongSizes) {
     expect_closed_and_consistent(m);
     EXPECT_EQ(m.position.size(), 10u);  // 2 points x 6 axis edges, minus the one edge between them
     EXPECT_THROW(marching_cubes(g, std::vector<float>(5), 0.5f), DataError);
+}
+
+TEST(MarchingCubes, SmallPiecesDropWithTheirVerticesLargeOnesStay) {
+    // Three balls in one volume: radius 9 (the largest), 5 and a speck of 1.2.
+    trace::Grid g;
+    g.dims = {48, 24, 24};
+    g.spacing = glm::vec3(1.0f);
+    g.origin = glm::vec3(0.0f);
+    std::vector<float> v(g.count());
+    const glm::vec3 c[3] = {{12, 12, 12}, {32, 12, 12}, {43, 5, 5}};
+    const float r[3] = {9.0f, 5.0f, 1.2f};
+    for (size_t i = 0; i < g.count(); ++i) {
+        const glm::vec3 p = g.point(g.coord(i));
+        float best = -1e9f;
+        for (int k = 0; k < 3; ++k) best = std::max(best, r[k] - glm::length(p - c[k]));
+        v[i] = best;
+    }
+    const Mesh all = marching_cubes(g, v, 0.0f);
+    PieceStats st;
+    const Mesh kept = drop_small_pieces(all, 0.05f, &st);
+    EXPECT_EQ(st.pieces, 3u);
+    EXPECT_EQ(st.kept, 2u);
+    EXPECT_GT(st.dropped_triangles, 0u);
+    EXPECT_EQ(kept.index.size() + 3 * st.dropped_triangles, all.index.size());
+    expect_closed_and_consistent(kept);  // whole pieces go, the rest keeps its winding
+    EXPECT_EQ(kept.normal.size(), kept.position.size());
+    std::vector<bool> used(kept.position.size(), false);
+    for (uint32_t i : kept.index) used[i] = true;
+    EXPECT_EQ(std::count(used.begin(), used.end(), false), 0) << "vertices only the speck used must go";
+    for (const auto& p : kept.position) EXPECT_GT(glm::length(p - c[2]), 2.0f) << "a speck vertex survived";
+    // 0 keeps everything; a share above the second ball keeps only the largest.
+    EXPECT_EQ(drop_small_pieces(all, 0.0f).index.size(), all.index.size());
+    drop_small_pieces(all, 0.5f, &st);
+    EXPECT_EQ(st.kept, 1u);
 }

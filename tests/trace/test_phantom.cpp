@@ -41,6 +41,7 @@ TEST(Phantom, SmallPresetHasAFewHundredLinesInsideTheArch) {
         ASSERT_GE(l.count, 2u);
         for (uint32_t i = l.first + 1; i < l.first + l.count; ++i) ASSERT_GE(s.lines.time[i], s.lines.time[i - 1]);
     }
+    EXPECT_EQ(s.lines.units, (Units{"mm", "s", "mm/s"}));  // the phantom knows its units
     ASSERT_TRUE(s.mesh.has_value());
     EXPECT_GT(s.mesh->index.size() / 3, 2000u);
     EXPECT_EQ(s.mesh->normal.size(), s.mesh->position.size());
@@ -75,6 +76,7 @@ TEST(Phantom, CachePathAndReuse) {
     EXPECT_TRUE(std::filesystem::exists(dir / "pathlet" / "phantom-small-v1.glb"));
     const Scene loaded = phantom::load_or_make_phantom("small");
     EXPECT_EQ(loaded.source, path);  // came from the cache
+    EXPECT_EQ(loaded.lines.units, made.lines.units);
     EXPECT_EQ(loaded.lines.position, made.lines.position);
     EXPECT_EQ(loaded.lines.lines.size(), made.lines.lines.size());
     ASSERT_TRUE(loaded.mesh.has_value());

@@ -57,8 +57,17 @@ TEST(RealData, CarotidVtkTracesInsideTheVessel) {
     EXPECT_GT(pl.line_count(), 20u);
     EXPECT_EQ(pl.position.size(), pl.time.size());
     expect_inside(pl, f.grid);
+    // Units undocumented: none shown but the tracer's clock.
+    EXPECT_EQ(pl.units, (Units{"", "s", ""}));
     const Mesh wall = marching_cubes(f.grid, f.scalars, 175.0f);
     EXPECT_NEAR(double(wall.index.size() / 3), 13.8e3, 0.05 * 13.8e3);  // README: 13.8k triangles at 175
+    // The wall `pathlet trace --wall` writes: the noise specks of the threshold dropped, the
+    // vessel (largest piece 5.2k triangles, README) and its branches kept.
+    PieceStats pieces;
+    const Mesh kept = vessel_wall(f, 0.01f, &pieces);
+    EXPECT_GT(pieces.pieces, 20u);
+    EXPECT_LT(pieces.kept, pieces.pieces / 2);
+    EXPECT_GT(kept.index.size() / 3, 12000u);
 }
 
 TEST(RealData, FlowNetAorticArchTracesAndWalls) {
@@ -79,4 +88,5 @@ TEST(RealData, FlowNetAorticArchTracesAndWalls) {
     const Pathlines pl = trace_pathlines(f, o);
     EXPECT_GT(pl.line_count(), 20u);
     expect_inside(pl, f.grid);
+    EXPECT_EQ(pl.units, (Units{"mm", "s", "mm/s"}));  // 4DFlowNet: dx in mm, m/s converted
 }

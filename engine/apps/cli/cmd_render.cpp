@@ -104,7 +104,8 @@ int run(const std::vector<std::string>& argv) {
     Runtime rt;
     rt.load_plugins(a.all("plugin-dir"));
     Scene scene = load_scene(a, opt.quiet);
-    if (!a.has("time")) opt.time = {scene.lines.time_min(), scene.lines.time_max(), 0.25};
+    if (!a.has("time"))  // streamlines are drawn whole: one frame, not the same picture over their pseudo-time
+        opt.time = scene.lines.timeless ? TimeRange{0, 0, 0.25} : TimeRange{scene.lines.time_min(), scene.lines.time_max(), 0.25};
     try {
         std::unique_ptr<VideoWriter> video;
         if (!video_path.empty()) {

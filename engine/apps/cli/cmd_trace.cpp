@@ -4,6 +4,8 @@
 #include "commands.hpp"
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
+#include "io/units.hpp"
+#include "scene_args.hpp"
 #include "trace/field_readers.hpp"
 #include "trace/marching_cubes.hpp"
 #include "fraction_progress.hpp"
@@ -37,8 +39,12 @@ int run(std::vector<std::string> argv) {
         .option("output", "OUT", "", "pathlines to write (.vtp, .vtk, .pathlet); required")
         .short_name('o')
         .option("wall", "OUT.glb", "", "also write the vessel wall (marching cubes of the mask) as .glb/.gltf/.stl/.obj")
+        .option("wall-pieces", "SHARE", "0.01",
+                "drop wall pieces with fewer triangles than SHARE of the largest (a thresholded scan's noise specks); 0 keeps all")
         .option("mask-threshold", "X", "", "vessel = scalars > X (e.g. 175 for carotid.vtk)")
         .option("velocity-scale", "S", "1", "multiply velocities (e.g. to convert units to world units/s)")
+        .option("units", "LENGTH[,VELOCITY]", "",
+                "units written with the pathlines where the field does not say them (the .h5 layout does: mm, mm/s)")
         .option("step", "VOXELS", "0.25", "RK4 step length in voxels")
         .option("max-dt", "SECONDS", "0.02", "largest time step")
         .option("duration", "SECONDS", "10", "release window: seeds released over [0, duration); lines clipped to it")
@@ -86,27 +92,36 @@ int run(std::vector<std::string> argv) {
     if (!(o.step > 0) || !(o.max_dt > 0) || !(o.time_end > 0) || !(o.max_line_time > 0) || o.smooth_passes < 0 || o.threads < 0)
         throw UsageError("--step, --max-dt, --duration, --line-time must be > 0; --smooth, --threads >= 0");
     const float vscale = float(a.number("velocity-scale"));
+    const float wall_pieces = float(a.number("wall-pieces"));
+    if (!(wall_pieces >= 0.0f && wall_pieces <= 1.0f)) throw UsageError("--wall-pieces must lie in 0..1");
+    const std::string units = units_option(a);
 
     {
         io::format_from_extension(out);  // fail on a bad extension before the work
         FractionProgress progress("trace");
         trace::VelocityField field = trace::load_velocity_field(a.pos("FIELD"));
         if (a.has("mask-threshold")) field.mask_from_scalars(float(a.number("mask-threshold")));
-        if (vscale != 1.0f)
+        if (vscale != 1.0f) {
             for (auto& f : field.frames)
                 for (auto& v : f) v *= vscale;
-        trace::TraceStats st;
-        const Pathlines lines = trace::trace_pathlines(field, o, progress.callback(), &st);
-        if (!a.get("wall").empty()) {
-            if (field.mask.empty()) throw DataError(a.pos("FIELD") + ": no mask or --mask-threshold, so no wall to extract");
-            io::save_mesh(trace::marching_cubes(field.grid, field.mask, 0.5f, progress.callback()), a.get("wall"));
+            field.units.velocity = "";  // scaled into something only the user knows: --units says it
         }
+        trace::TraceStats st;
+        Pathlines lines = trace::trace_pathlines(field, o, progress.callback(), &st);
+        io::apply_units_option(lines.units, units);
+        trace::PieceStats pieces;
+        if (!a.get("wall").empty())
+            io::save_mesh(trace::vessel_wall(field, wall_pieces, &pieces, progress.callback()), a.get("wall"));
         io::save_pathlines(lines, out, io::format_from_extension(out));
         progress.finish("done");
         std::fprintf(stderr, "pathlet trace: %zu lines, %zu points; %zu of %zu vessel voxels crossed; %zu seeds "
                              "(%zu too short, %zu too close); %.1f s\n",
                      lines.line_count(), lines.point_count(), st.covered_voxels, st.vessel_voxels, st.candidates,
                      st.rejected_short, st.rejected_close, progress.seconds());
+        if (pieces.pieces > pieces.kept)
+            std::fprintf(stderr, "pathlet trace: wall: kept %zu of %zu pieces (dropped %zu triangles in pieces under %g of the "
+                                 "largest; --wall-pieces 0 keeps them)\n",
+                         pieces.kept, pieces.pieces, pieces.dropped_triangles, double(wall_pieces));
         return 0;
     }
 }

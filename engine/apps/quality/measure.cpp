@@ -213,7 +213,9 @@ QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOpti
     const json& vars = rendered.compiled.variables;
     const double window = vars.contains("window") ? vars["window"].get<double>() : 1.0;
     float width = vars.contains("line_width") ? vars["line_width"].get<float>() : 0.0f;
-    if (width <= 0) width = GpuScene::auto_line_width(scene.lines.bounds());
+    const float factor = vars.contains("width_factor") ? vars["width_factor"].get<float>() : 1.0f;
+    // The renderer's rule: the auto width of the whole scene's box (lines and wall), times the factor.
+    if (width <= 0) width = factor * GpuScene::auto_line_width(scene.bounds());
     const Captured& last = frames.back();
     const Camera cam = frame_bounds(scene.bounds(), opt.size);
     RayTracedAo tracer(visible_tubes(scene.lines, last.time, window, 0.5f * width));

@@ -50,6 +50,10 @@ Sniffed sniff(std::string_view b, const std::string& path) {
     std::string ext = lower_extension(path);
     if (b.size() >= kNativeMagic.size() && b.substr(0, kNativeMagic.size()) == kNativeMagic) return Sniffed::Native;
     if (b.size() >= 4 && b.substr(0, 4) == "glTF") return Sniffed::Glb;
+    // Tractography: TrackVis's magic "TRACK\0", MRtrix's first line (a .trk/.tck file without
+    // them still goes to its reader below, which says what is wrong).
+    if (b.substr(0, 6) == std::string_view("TRACK\0", 6)) return Sniffed::TrackVis;
+    if (b.substr(0, 13) == "mrtrix tracks") return Sniffed::MrtrixTck;
     // Binary STL: 80-byte header, uint32 count, 50 bytes per triangle; the size rule wins
     // over a header that happens to start with "solid" (many exporters do that).
     if (b.size() >= 84) {
@@ -66,6 +70,8 @@ Sniffed sniff(std::string_view b, const std::string& path) {
     if (!s.empty() && s[0] == '<') return ext == ".vtp" ? Sniffed::VtkXml : Sniffed::Unknown;
     if (!s.empty() && s[0] == '{') return Sniffed::Gltf;
     if (starts_with_ci(s, "solid") && s.substr(0, 4096).find("facet") != std::string_view::npos) return Sniffed::StlAscii;
+    if (ext == ".trk") return Sniffed::TrackVis;
+    if (ext == ".tck") return Sniffed::MrtrixTck;
     if (ext == ".stl") return b.size() >= 84 ? Sniffed::StlBinary : Sniffed::StlAscii;
     if (ext == ".obj") return Sniffed::Obj;
     if (ext == ".gltf") return Sniffed::Gltf;
@@ -90,6 +96,8 @@ const char* sniffed_name(Sniffed s) {
         case Sniffed::StlBinary: return "STL binary";
         case Sniffed::Obj: return "Wavefront OBJ";
         case Sniffed::TextRows: return "plain-text pathline rows";
+        case Sniffed::TrackVis: return "TrackVis .trk";
+        case Sniffed::MrtrixTck: return "MRtrix .tck";
         default: return "unknown";
     }
 }

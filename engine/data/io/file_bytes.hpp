@@ -9,7 +9,7 @@ namespace pathlet::io {
 // The whole file in one read. DataError "<file>: byte 0: cannot open: ..." on failure.
 std::string read_file_bytes(const std::string& path);
 
-enum class Sniffed { Unknown, VtkLegacy, VtkXml, Native, Gltf, Glb, StlAscii, StlBinary, Obj, TextRows };
+enum class Sniffed { Unknown, VtkLegacy, VtkXml, Native, Gltf, Glb, StlAscii, StlBinary, Obj, TextRows, TrackVis, MrtrixTck };
 // Decides by content first; the extension only breaks ties (e.g. STL "solid" vs. text).
 Sniffed sniff(std::string_view bytes, const std::string& path);
 const char* sniffed_name(Sniffed s);

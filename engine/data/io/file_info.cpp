@@ -2,6 +2,7 @@
 
 #include "file_bytes.hpp"
 #include "mesh_io.hpp"
+#include "units.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -59,10 +60,19 @@ std::string describe_file(const std::string& path, const LoadOptions& opts) {
     o << "arrays:    ";
     for (size_t i = 0; i < r.arrays.size(); ++i) o << (i ? ", " : "") << r.arrays[i];
     o << (r.arrays.empty() ? "none" : "") << "\n";
+    const Units& u = p.units;
+    const bool missing = u.length.empty() || (!p.timeless && u.velocity.empty());
+    o << "units:     " << describe_units(u) << (missing ? " (the file does not say them all: --units LENGTH[,VELOCITY])" : "")
+      << "\n";
+    if (p.timeless) o << "time:      none (streamlines: drawn whole; --pseudo-time animates them along the arc length)\n";
+    if (!p.empty() && !p.timeless) {
+        const std::string ts = u.time.empty() ? "" : " " + u.time;
+        o << fmt("time:      %.6g .. %.6g%s (span %.6g%s)\n", p.time_min(), p.time_max(), ts.c_str(), p.time_max() - p.time_min(),
+                 ts.c_str());
+        o << fmt("speed:     %.6g .. %.6g%s\n", p.speed_min(), p.speed_max(), u.velocity.empty() ? "" : (" " + u.velocity).c_str());
+    }
     if (!p.empty()) {
-        o << fmt("time:      %.6g .. %.6g s (span %.6g s)\n", p.time_min(), p.time_max(), p.time_max() - p.time_min());
-        o << fmt("speed:     %.6g .. %.6g\n", p.speed_min(), p.speed_max());
-        o << "bounds:    " << bounds_text(p.bounds()) << "\n";
+        o << "bounds:    " << bounds_text(p.bounds()) << (u.length.empty() ? "" : " (" + u.length + ")") << "\n";
         std::vector<uint32_t> counts;
         for (auto& l : p.lines) counts.push_back(l.count);
         std::sort(counts.begin(), counts.end());

@@ -2,7 +2,9 @@
 
 #include "byte_reader.hpp"
 #include "raw_polylines.hpp"
+#include "units.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 
@@ -23,7 +25,10 @@ std::string encode_native(const Pathlines& pl) {
     size_t time_off = align16(pos_off + n * 12);
     size_t vel_off = align16(time_off + n * 4);
     size_t line_off = align16(vel_off + n * 12);
-    size_t total = line_off + l * 8;
+    const std::string units = pl.units.length + '\0' + pl.units.time + '\0' + pl.units.velocity + '\0';
+    const bool has_units = units.size() > 3;
+    size_t units_off = has_units ? align16(line_off + l * 8) : 0;
+    size_t total = has_units ? units_off + units.size() : line_off + l * 8;
     std::string s(total, '\0');
     std::memcpy(s.data(), kNativeMagic.data(), kNativeMagic.size());
     put<uint32_t>(s, 8, kNativeVersion);
@@ -35,6 +40,9 @@ std::string encode_native(const Pathlines& pl) {
     put<uint64_t>(s, 48, vel_off);
     put<uint64_t>(s, 56, line_off);
     put<uint64_t>(s, 64, total);
+    put<uint64_t>(s, 72, units_off);
+    put<uint64_t>(s, 80, has_units ? units.size() : 0);
+    if (has_units) std::memcpy(s.data() + units_off, units.data(), units.size());
     if (n) {
         std::memcpy(s.data() + pos_off, pl.position.data(), n * 12);
         std::memcpy(s.data() + time_off, pl.time.data(), n * 4);
@@ -86,6 +94,18 @@ Pathlines decode_native(std::string_view b, const std::string& file, LoadReport&
             fail_at(file, at_byte(off[3] + 8 * i), "line " + std::to_string(i) + " (points " + std::to_string(pl.lines[i].first) +
                                                        " + " + std::to_string(pl.lines[i].count) + ") runs past the " +
                                                        std::to_string(n) + " points");
+    const uint64_t units_off = get<uint64_t>(b, 72), units_size = get<uint64_t>(b, 80);
+    if (units_off != 0) {
+        if (units_off < kNativeHeaderSize || units_off > b.size() || units_size > b.size() - units_off || units_size > 256)
+            fail_at(file, at_byte(72), "units block at byte " + std::to_string(units_off) + " of " + std::to_string(units_size) +
+                                           " bytes lies outside the file (or is longer than 256 bytes)");
+        std::string_view block = b.substr(size_t(units_off), size_t(units_size));
+        for (int i = 0; i < 3 && !block.empty(); ++i) {
+            const size_t end = std::min(block.find('\0'), block.size());
+            unit_slot(pl.units, i) = sanitize_unit(block.substr(0, end));
+            block.remove_prefix(std::min(end + 1, block.size()));
+        }
+    }
     report.arrays = {"time (1 comp)", "velocity (3 comp)"};
     if (l == 0) report.warnings.push_back("the file holds no lines: empty pathline set");
     repair_pathlines(pl, report, file);

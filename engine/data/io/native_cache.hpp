@@ -11,7 +11,9 @@
 //  48  u64      offset of velocities (N * 3 float32)
 //  56  u64      offset of lines      (L * {u32 first, u32 count})
 //  64  u64      total file size
-//  72  u8[24]   reserved, zero
+//  72  u64      offset of the units block, 0 = none (files from before units: zero)
+//  80  u64      size of the units block: "length\0time\0velocity\0", at most 256 bytes
+//  88  u8[8]    reserved, zero
 #pragma once
 
 #include "pathline_io.hpp"

@@ -1,4 +1,5 @@
 #include "limits.hpp"
+#include "units.hpp"
 #include "raw_polylines.hpp"
 
 #include "byte_reader.hpp"
@@ -101,14 +102,15 @@ Pathlines assemble_pathlines(RawPolylines&& raw, const LoadOptions& opts, LoadRe
                              "--time-array / LoadOptions::time_array", file, raw.where_data);
     const RawArray* v = pick(raw.point_arrays, opts.velocity_array, {"velocity", "vel", "u", "v"}, 3, "velocity",
                              "--velocity-array / LoadOptions::velocity_array", file, raw.where_data);
-    if (!t && !v) {
+    if (!t && !v && !opts.streamlines && !opts.pseudo_time) {
         std::string names;
         for (auto& s : report.arrays) names += (names.empty() ? "" : ", ") + s;
         fail_at(file, raw.where_data,
                 "no time array and no velocity array, so pathline time cannot be derived. Point arrays present: " +
                     (names.empty() ? std::string("none") : names) +
                     ". Name the time array with --time-array NAME (LoadOptions::time_array) or the velocity with "
-                    "--velocity-array NAME");
+                    "--velocity-array NAME; streamlines without either load with --streamlines (drawn whole) or "
+                    "--pseudo-time (animated along the arc length)");
     }
     const size_t total = raw.connectivity.size();
     out.position.resize(total);
@@ -124,6 +126,7 @@ Pathlines assemble_pathlines(RawPolylines&& raw, const LoadOptions& opts, LoadRe
     }
     for (size_t l = 0; l + 1 < raw.offsets.size(); ++l)
         out.lines.push_back({uint32_t(raw.offsets[l]), uint32_t(raw.offsets[l + 1] - raw.offsets[l])});
+    out.units = raw.units;
     repair_pathlines(out, report, file);
     return out;
 }
@@ -275,7 +278,37 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
     if (c.short_lines)
         w.push_back("dropped " + std::to_string(c.short_lines) + " lines with fewer than 2 distinct points");
 
-    if (!has_time) {
+    out.units = pl.units;
+    if (!has_time && !has_vel) {
+        // Streamlines (tractography, centrelines): a pseudo-time along the arc length at 10 % of
+        // the data's diagonal per second, so a 1 s window shows a tenth of the diagonal moving
+        // along each line whatever the data's scale. Time and speed mean nothing physical.
+        const double pseudo_speed = diag > 0.0 ? 0.1 * diag : 1.0;
+        out.time.resize(out.position.size());
+        for (auto& r : out.lines) {
+            double arc = 0.0;
+            out.time[r.first] = 0.0f;
+            for (uint32_t k = r.first + 1; k < r.first + r.count; ++k) {
+                arc += glm::length(glm::dvec3(out.position[k]) - glm::dvec3(out.position[k - 1]));
+                out.time[k] = std::max(float(arc / pseudo_speed), std::nextafter(out.time[k - 1], INFINITY));
+            }
+        }
+        // Velocity: the unit tangent at exactly the pseudo-speed, so a speed colour map gives
+        // every streamline the same colour instead of noise from uneven point spacing.
+        out.velocity.resize(out.position.size());
+        for (auto& r : out.lines) {
+            const uint32_t a = r.first, e = r.first + r.count - 1;
+            for (uint32_t k = a; k <= e; ++k) {
+                const glm::vec3 d = out.position[k == e ? e : k + 1] - out.position[k == a ? a : k - 1];
+                const float len = glm::length(d);
+                out.velocity[k] = len > 0.0f ? d * float(pseudo_speed / len) : glm::vec3(float(pseudo_speed), 0.0f, 0.0f);
+            }
+        }
+        out.units.time = out.units.velocity = "";
+        out.timeless = true;
+        w.push_back("no time and no velocity: streamlines, drawn whole (pseudo-time along the arc length for "
+                    "animation: " + short_number(pseudo_speed) + " length units per second, 10 % of the diagonal)");
+    } else if (!has_time) {
         // Time from arc length / speed: dt = |dp| / mean(|v_k|, |v_k+1|). A stagnant pair
         // (both speeds 0) uses the median speed of the whole set so time stays increasing.
         std::vector<float> speeds;
@@ -299,8 +332,11 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
             }
         }
         w.push_back("no time array: derived time from arc length / speed (each line starts at t = 0)");
+        // mm over mm/s is s; any other pairing leaves the time unit unknown.
+        const std::string per_s = out.units.length.empty() ? "" : out.units.length + "/s";
+        out.units.time = !per_s.empty() && out.units.velocity == per_s ? "s" : "";
     }
-    if (!has_vel) {
+    if (!has_vel && !out.timeless) {
         // Central differences inside a line, one-sided at its ends.
         out.velocity.resize(out.position.size());
         for (auto& r : out.lines) {
@@ -310,7 +346,10 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
                 out.velocity[k] = (out.position[i1] - out.position[i0]) / (out.time[i1] - out.time[i0]);
             }
         }
-        w.push_back("no velocity array: derived velocity by finite differences of position over time");
+        if (has_time) {
+            w.push_back("no velocity array: derived velocity by finite differences of position over time");
+            if (out.units.velocity.empty()) out.units.velocity = derived_velocity_unit(out.units);
+        }
     }
     if (out.lines.empty() && !pl.lines.empty()) w.push_back("no drawable lines remain after repair: empty pathline set");
     pl = std::move(out);

@@ -21,6 +21,7 @@ struct RawPolylines {
     std::vector<int64_t> offsets{0};      // line i = connectivity[offsets[i] .. offsets[i+1])
     std::vector<int64_t> connectivity;
     std::vector<RawArray> point_arrays;
+    Units units;                          // from the dataset's field data
     uint64_t polygons = 0;                // polygons/strips seen (for "this is a surface" errors)
     std::string where_lines = "byte 0";   // locations for errors found after parsing
     std::string where_data = "byte 0";

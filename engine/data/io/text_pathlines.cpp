@@ -52,6 +52,7 @@ Pathlines read_text_rows(std::string_view bytes, const std::string& file, const 
         report.warnings.push_back("late release: dropped " + std::to_string(late_copies) + " leading copies of the seed point in " +
                                   std::to_string(late_lines) + " lines (" + std::to_string(raw_samples) + " raw samples)");
     if (pl.lines.empty()) report.warnings.push_back("the file holds no lines: empty pathline set");
+    if (opts.time_step > 0) pl.units.time = "s";  // the default step is a guess: no unit shown for it
     repair_pathlines(pl, report, file);
     return pl;
 }

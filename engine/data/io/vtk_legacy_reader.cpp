@@ -2,6 +2,7 @@
 // OFFSETS/CONNECTIVITY layouts, point arrays from SCALARS, VECTORS and FIELD. Other
 // sections are read by their declared size and discarded.
 #include "pathline_formats.hpp"
+#include "units.hpp"
 #include "vtk_values.hpp"
 
 #include <cmath>
@@ -77,6 +78,41 @@ struct LegacyReader {
     std::vector<int64_t> ints(uint64_t count, ScalarType t, const char* what) {
         return read_values<int64_t>(c, count, t, binary, true, what);
     }
+    // `count` strings of a string array as vtkDataWriter writes them: ASCII one per line with
+    // %XX escapes; BINARY each after a big-endian length whose top two bits give its size
+    // (11: 6-bit length in 1 byte, 10: 14 bits in 2, 01: 30 bits in 4, 00: 64 bits in 8).
+    std::vector<std::string> strings(uint64_t count, const std::string& what) {
+        if (count > c.remaining() + 1) c.fail(what + ": declares " + std::to_string(count) + " strings, more than the file holds");
+        std::vector<std::string> out;
+        for (uint64_t i = 0; i < count; ++i) {
+            if (c.at_end()) c.fail(what + ": the file ends after " + std::to_string(i) + " of " + std::to_string(count) + " strings");
+            std::string s;
+            if (!binary) {
+                std::string_view line = c.rest_of_line();
+                auto hex = [](char h) { return h >= '0' && h <= '9' ? h - '0' : h >= 'a' && h <= 'f' ? h - 'a' + 10 : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1; };
+                for (size_t k = 0; k < line.size(); ++k) {
+                    if (line[k] == '%' && k + 2 < line.size() && hex(line[k + 1]) >= 0 && hex(line[k + 2]) >= 0) {
+                        s += char(hex(line[k + 1]) * 16 + hex(line[k + 2]));
+                        k += 2;
+                    } else {
+                        s += line[k];
+                    }
+                }
+            } else {
+                const auto b0 = (unsigned char)c.bytes(1, what.c_str())[0];
+                const int extra = b0 >> 6 == 3 ? 0 : b0 >> 6 == 2 ? 1 : b0 >> 6 == 1 ? 3 : 7;
+                uint64_t len = b0 & 0x3f;
+                for (unsigned char b : c.bytes(size_t(extra), what.c_str())) len = (len << 8) | b;
+                if (len > c.remaining())
+                    c.fail(what + ": string " + std::to_string(i) + " declares " + std::to_string(len) + " bytes but only " +
+                           std::to_string(c.remaining()) + " remain (file truncated?)");
+                s = std::string(c.bytes(size_t(len), what.c_str()));
+            }
+            out.push_back(std::move(s));
+        }
+        return out;
+    }
+
     // METADATA blocks (VTK >= 8) end at the first blank line.
     void skip_metadata() {
         c.rest_of_line();
@@ -187,8 +223,16 @@ struct LegacyReader {
             if (iequals(a[0], "NULL_ARRAY")) continue;
             need(a, 4, "arrayName numComponents numTuples type");
             uint64_t comps = num(a[1], "component count", 1u << 16), nt = num(a[2], "tuple count", UINT64_MAX / 1024);
-            if (iequals(a[3], "string") || iequals(a[3], "utf8_string"))
-                c.fail("FIELD array '" + std::string(a[0]) + "' holds strings, which are not supported");
+            if (iequals(a[3], "string") || iequals(a[3], "utf8_string")) {
+                auto strs = strings(comps * nt, "FIELD array '" + std::string(a[0]) + "'");
+                const int which = unit_array_index(a[0]);
+                if (!point_data && which >= 0 && !strs.empty()) {
+                    const std::string unit = sanitize_unit(strs[0]);
+                    if (unit.empty()) report.warnings.push_back("field data '" + std::string(a[0]) + "' holds no printable unit: ignored");
+                    else unit_slot(raw.units, which) = unit;
+                }
+                continue;  // string arrays other than the units are not used
+            }
             auto vals = floats(comps * nt, type_of(a[3]), "FIELD array");
             if (point_data) {
                 if (nt != tuples)

@@ -1,5 +1,6 @@
 // VTK legacy POLYDATA writer: time as SCALARS, velocity as VECTORS; BINARY is big-endian.
 #include "pathline_formats.hpp"
+#include "units.hpp"
 
 #include <bit>
 #include <cstdio>
@@ -53,6 +54,28 @@ std::string write_vtk_legacy(const Pathlines& pl, const VtkLegacyWriteOptions& o
     const size_t n = pl.position.size(), l = pl.lines.size();
     o.text("# vtk DataFile Version %s\npathlet pathlines\n%s\nDATASET POLYDATA\n", opts.version51 ? "5.1" : "4.2",
            opts.binary ? "BINARY" : "ASCII");
+    // Known units as field data string arrays, as vtkDataWriter writes them (ASCII: one line
+    // with %XX escapes; BINARY: a one-byte length 0b11xxxxxx, units being shorter than 64).
+    const std::string* units[3] = {&pl.units.length, &pl.units.time, &pl.units.velocity};
+    int known = 0;
+    for (auto* u : units) known += u->empty() ? 0 : 1;
+    if (known) {
+        o.text("FIELD FieldData %d\n", known);
+        for (int i = 0; i < 3; ++i) {
+            if (units[i]->empty()) continue;
+            o.text("%s 1 1 string\n", kUnitArrays[i]);
+            if (opts.binary) {
+                o.s += char(0xC0 | (units[i]->size() & 0x3f));
+                o.s += *units[i];
+            } else {
+                for (unsigned char ch : *units[i]) {
+                    if (ch > ' ' && ch < 0x7f && ch != '%') o.s += char(ch);
+                    else o.text("%%%02X", unsigned(ch));
+                }
+            }
+            o.s += '\n';
+        }
+    }
     o.text("POINTS %zu float\n", n);
     o.floats(reinterpret_cast<const float*>(pl.position.data()), n * 3, 9);
     size_t conn = 0;

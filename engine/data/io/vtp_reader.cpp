@@ -7,6 +7,7 @@
 #include "vtk_values.hpp"
 #include "xml_scan.hpp"
 #include "limits.hpp"
+#include "units.hpp"
 #include "zlib_blocks.hpp"
 
 #include <deque>
@@ -185,6 +186,69 @@ struct VtpReader {
         return out;
     }
 
+    // The bytes of a String array (VTK: each string's characters, then a NUL; in ascii as
+    // decimal codes). Units are short: more than kMaxStringBytes is refused before reading.
+    static constexpr uint64_t kMaxStringBytes = 4096;
+    std::string string_bytes(const ArrayTag& a, const std::string& what) {
+        const XmlTag& t = a.tag;
+        auto fmt = t.attr("format", "ascii");
+        std::string out;
+        if (fmt == "ascii") {
+            Cursor c(a.payload, file, false);  // the characters up to the closing tag
+            for (auto tok = c.token(); !tok.empty(); tok = c.token()) {
+                int64_t v;
+                if (!parse_number(tok, v) || v < 0 || v > 255)
+                    fail(a.payload_at, what + ": '" + std::string(tok.substr(0, 20)) + "' is not a character code");
+                if (out.size() >= kMaxStringBytes) fail(a.payload_at, what + ": longer than " + std::to_string(kMaxStringBytes) + " bytes");
+                out += char(v);
+            }
+            return out;
+        }
+        auto read_from = [&](ByteSource src) {
+            // The size comes from the array's own header: peek at a copy, then read for real.
+            ByteSource peek = src;
+            uint64_t n = 0;
+            if (!zlib) {
+                n = header_uint(peek, what);
+            } else {
+                uint64_t blocks = header_uint(peek, what), block = header_uint(peek, what), last = header_uint(peek, what);
+                if (blocks > kMaxStringBytes || block > kMaxStringBytes)
+                    fail(src.at(), what + ": zlib header declares more than " + std::to_string(kMaxStringBytes) + " bytes");
+                n = blocks == 0 ? 0 : (blocks - 1) * block + (last ? last : block);
+            }
+            if (n > kMaxStringBytes) fail(src.at(), what + ": declares " + std::to_string(n) + " bytes, more than a unit needs");
+            std::string storage;
+            return std::string(binary_payload(src, n, what, storage));
+        };
+        if (fmt == "binary") return read_from(ByteSource(Base64Reader(a.payload), a.payload_at));
+        if (fmt == "appended") {
+            if (appended.data() == nullptr) fail(t.begin, what + " is format=\"appended\" but the file has no <AppendedData>");
+            uint64_t off = attr_count(t, "offset", UINT64_MAX / 2);
+            if (off > appended.size()) fail(t.begin, what + ": offset " + std::to_string(off) + " lies beyond the appended data");
+            return appended_base64 ? read_from(ByteSource(Base64Reader(appended, size_t(off)), appended_at + off))
+                                   : read_from(ByteSource(appended.substr(size_t(off)), appended_at + off));
+        }
+        fail(t.begin, what + ": unknown format=\"" + std::string(fmt) + "\"");
+    }
+
+    // LengthUnit / TimeUnit / VelocityUnit among the dataset's field data (other arrays are
+    // not read). A unit we cannot show is dropped with a warning, never an error.
+    void read_units(const std::vector<ArrayTag>& field, Units& units) {
+        for (auto& a : field) {
+            const std::string name(a.tag.attr("Name"));
+            const int which = unit_array_index(name);
+            if (which < 0) continue;
+            if (a.tag.attr("type") != "String") {
+                report.warnings.push_back("field data '" + name + "' is not a String array: unit ignored");
+                continue;
+            }
+            const std::string raw = string_bytes(a, "FieldData array '" + name + "'");
+            const std::string unit = sanitize_unit(raw.substr(0, raw.find('\0')));
+            if (unit.empty()) report.warnings.push_back("field data '" + name + "' holds no printable unit: ignored");
+            else unit_slot(units, which) = unit;
+        }
+    }
+
     RawPolylines read_piece(const XmlTag& piece, const std::vector<ArrayTag>& arrays) {
         RawPolylines raw;
         uint64_t np = attr_count(piece, "NumberOfPoints"), nl = attr_count(piece, "NumberOfLines");
@@ -272,7 +336,7 @@ struct VtpReader {
         RawPolylines all;
         std::vector<std::string_view> stack;
         const XmlTag* piece = nullptr;
-        std::vector<ArrayTag> arrays;
+        std::vector<ArrayTag> arrays, field;
         int pieces = 0;
         std::map<std::string, int> formats;
         for (auto& t : tags) {
@@ -289,14 +353,18 @@ struct VtpReader {
                 if (stack.empty() || stack.back() != "PolyData") fail(t.begin, "<Piece> outside <PolyData>");
                 piece = &t;
                 ++pieces;
-            } else if (t.name == "DataArray" && piece && !stack.empty()) {
+            } else if (t.name == "DataArray" && !stack.empty() && (piece || stack.back() == "FieldData")) {
                 ArrayTag a{t, stack.back(), {}, t.end};
                 if (!t.self_closing) {
                     size_t e = head.find('<', t.end);
                     a.payload = head.substr(t.end, (e == std::string_view::npos ? head.size() : e) - t.end);
                 }
-                formats[std::string(t.attr("format", "ascii"))]++;
-                arrays.push_back(a);
+                if (piece) {
+                    formats[std::string(t.attr("format", "ascii"))]++;
+                    arrays.push_back(a);
+                } else {
+                    field.push_back(a);
+                }
             }
             if (!t.self_closing) stack.push_back(t.name);
             else if (t.name == "Piece") {
@@ -305,6 +373,7 @@ struct VtpReader {
             }
         }
         if (piece) fail(piece->begin, "<Piece> is not closed (file truncated?)");
+        read_units(field, all.units);
         std::string fmts;
         for (auto& [k, v] : formats) fmts += (fmts.empty() ? "" : "+") + k;
         if (fmts == "appended") fmts += appended_base64 ? " base64" : " raw";

@@ -1,6 +1,7 @@
 // VTK XML PolyData writer in every encoding the reader accepts (see VtpWriteOptions).
 #include "base64.hpp"
 #include "pathline_formats.hpp"
+#include "units.hpp"
 #include "zlib_blocks.hpp"
 
 #include <algorithm>
@@ -88,6 +89,19 @@ std::string write_vtp(const Pathlines& pl, const VtpWriteOptions& o) {
     w.xml += std::string("\" header_type=\"") + (o.header64 ? "UInt64" : "UInt32") + "\"";
     if (o.zlib) w.xml += " compressor=\"vtkZLibDataCompressor\"";
     w.xml += ">\n  <PolyData>\n";
+    // Known units as field data String arrays (ascii: character codes, each string ends in 0).
+    const std::string* units[3] = {&pl.units.length, &pl.units.time, &pl.units.velocity};
+    if (!pl.units.length.empty() || !pl.units.time.empty() || !pl.units.velocity.empty()) {
+        w.xml += "    <FieldData>\n";
+        for (int i = 0; i < 3; ++i) {
+            if (units[i]->empty()) continue;
+            w.xml += std::string("      <DataArray type=\"String\" Name=\"") + kUnitArrays[i] +
+                     "\" NumberOfTuples=\"1\" format=\"ascii\">\n        ";
+            for (unsigned char c : *units[i]) w.xml += std::to_string(int(c)) + " ";
+            w.xml += "0\n      </DataArray>\n";
+        }
+        w.xml += "    </FieldData>\n";
+    }
     const size_t nl = pl.lines.size();
     const size_t pieces = std::max<size_t>(1, std::min<size_t>(size_t(std::max(o.pieces, 1)), std::max<size_t>(nl, 1)));
     for (size_t p = 0; p < pieces; ++p) {

@@ -115,6 +115,7 @@ trace::VelocityField make_phantom_field(const PhantomOptions& o) {
     hi += 3.0f * o.voxel;
     trace::VelocityField f;
     f.source = "phantom:" + o.preset;
+    f.units = {"mm", "", "mm/s"};
     f.grid.origin = glm::floor(lo / o.voxel) * o.voxel;
     f.grid.spacing = glm::vec3(o.voxel);
     f.grid.dims = glm::ivec3(glm::ceil((hi - f.grid.origin) / o.voxel)) + 1;

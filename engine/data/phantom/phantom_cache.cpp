@@ -29,6 +29,7 @@ Scene load_or_make_phantom(const std::string& preset, const trace::Progress& pro
         try {
             Scene s;
             s.lines = io::load_pathlines(path);
+            s.lines.units = {"mm", "s", "mm/s"};  // caches written before units carried none
             s.mesh = io::load_mesh(wall);
             s.source = path;
             return s;

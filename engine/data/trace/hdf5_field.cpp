@@ -88,6 +88,7 @@ VelocityField read_flownet_h5(const std::string& path) {
         if (!(dx > 0.0f)) throw DataError(path + ": dataset 'dx': voxel size must be positive");
     }
     f.grid.spacing = glm::vec3(dx);
+    f.units = {"mm", "", "mm/s"};  // 4DFlowNet: dx in mm, velocity in m/s (converted below)
     float dt = 1.0f / float(frames);
     if (has_dataset(file.id, "dt")) dt = read_dataset(file.id, "dt", path).data.at(0);
     const size_t per = ni * nj * nk;

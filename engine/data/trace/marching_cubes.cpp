@@ -1,8 +1,11 @@
 #include "marching_cubes.hpp"
 
+#include "velocity_field.hpp"
+
 #include <pathlet/scene.hpp>
 
 #include <algorithm>
+#include <numeric>
 #include <unordered_map>
 
 namespace pathlet::trace {
@@ -55,6 +58,55 @@ Mesh marching_cubes(const Grid& g, const std::vector<float>& values, float iso, 
     }
     report(progress, 1.0, "marching cubes");
     return mesh;
+}
+
+Mesh drop_small_pieces(const Mesh& m, float min_share, PieceStats* stats) {
+    // Union-find over vertices; a triangle joins its three.
+    std::vector<uint32_t> parent(m.position.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (size_t t = 0; t + 2 < m.index.size(); t += 3) {
+        const uint32_t a = find(m.index[t]);
+        for (int k = 1; k < 3; ++k) {
+            const uint32_t b = find(m.index[t + size_t(k)]);
+            if (a != b) parent[b] = a;
+        }
+    }
+    std::unordered_map<uint32_t, size_t> triangles;  // root -> triangle count
+    for (size_t t = 0; t + 2 < m.index.size(); t += 3) ++triangles[find(m.index[t])];
+    size_t largest = 0;
+    for (auto& [root, n] : triangles) largest = std::max(largest, n);
+    const double keep_from = double(min_share) * double(largest);
+    Mesh out;
+    std::vector<uint32_t> remap(m.position.size(), UINT32_MAX);
+    PieceStats st;
+    st.pieces = triangles.size();
+    for (auto& [root, n] : triangles) st.kept += double(n) >= keep_from;
+    for (size_t t = 0; t + 2 < m.index.size(); t += 3) {
+        if (double(triangles[find(m.index[t])]) < keep_from) {
+            ++st.dropped_triangles;
+            continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = m.index[t + size_t(k)];
+            if (remap[v] == UINT32_MAX) {
+                remap[v] = uint32_t(out.position.size());
+                out.position.push_back(m.position[v]);
+                if (m.normal.size() == m.position.size()) out.normal.push_back(m.normal[v]);
+            }
+            out.index.push_back(remap[v]);
+        }
+    }
+    if (stats) *stats = st;
+    return out;
+}
+
+Mesh vessel_wall(const VelocityField& field, float min_piece_share, PieceStats* stats, const Progress& progress) {
+    if (field.mask.empty()) throw DataError(field.source + ": no mask (or --mask-threshold), so no wall to extract");
+    return drop_small_pieces(marching_cubes(field.grid, field.mask, 0.5f, progress), min_piece_share, stats);
 }
 
 }  // namespace pathlet::trace

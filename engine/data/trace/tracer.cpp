@@ -199,6 +199,7 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
     }
     report(progress, 1.0, "tracing");
     if (stats_out) *stats_out = st;
+    out.units = {field.units.length, "s", field.units.velocity};
     return out;
 }
 

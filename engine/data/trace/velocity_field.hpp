@@ -18,6 +18,9 @@ struct VelocityField {
     std::vector<float> scalars;                  // optional intensity volume (VTK SCALARS)
     std::string scalars_name;
     std::string source;                          // file it came from, for messages
+    // Length and velocity units where the source says them (Units::time is unused here: the
+    // tracer's clock is seconds of the velocity's time base); "" = not known.
+    Units units;
 
     bool steady() const { return frames.size() <= 1; }
     // Length of one cycle when the frames are taken as periodic: last - first + one frame step.

@@ -134,7 +134,9 @@ LineFrag line_fragment() {
     // Halos go back in proportion to their distance into the band: close lines merge, far ones gap.
     f.depth01 = clamp((f.eye_depth - near) / max(far - near, 1e-6) + u_halo_depth * f.halo, 0.0, 1.0);
     float span = max(u_speed_range.y - u_speed_range.x, 1e-12);
-    f.color = colormap(u_colormap, (g_in.speed - u_speed_range.x) / span);
+    // The view matrix is a rotation and a translation: its transpose takes the tangent back to data axes.
+    f.color = colormap_is_direction(u_colormap) ? colormap_direction(transpose(mat3(u_view)) * f.tangent)
+                                                : colormap(u_colormap, (g_in.speed - u_speed_range.x) / span);
     f.point.time = g_in.time;
     f.point.age = clamp(g_in.age, 0.0, 1.0);
     f.point.arc_from_head = max(g_in.arc_head, 0.0);

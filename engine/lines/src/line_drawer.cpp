@@ -114,7 +114,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     const Camera& cam = ctx.camera();
     const GpuScene& scene = ctx.scene();
     const float window = p.f("window");
-    const bool windowed = window > 0.0f;
+    const bool windowed = window > 0.0f && !scene.cpu().lines.timeless;  // streamlines: whole
     const double t = ctx.time();
     // CPU sub-ranges per line: far cheaper on llvmpipe than culling in the GS or the FS.
     scene.ranges(windowed ? t - window : 0.0, windowed ? t : 0.0, ranges_);
@@ -136,11 +136,12 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     float smin = p.f("speed_min") > 0.0f ? p.f("speed_min") : scene.speed_min();
     float smax = p.f("speed_max") > 0.0f ? p.f("speed_max") : scene.speed_max();
     if (!(smax > smin)) smax = smin + 1.0f;
-    width_ = scene.line_width(p.f("line_width"));
+    width_ = scene.line_width(p.f("line_width"), p.f("width_factor"));
     scene.note_line_width(width_);
-    if (window != typical_window_) {  // a median over the scene's points: only when the window changes
-        typical_length_ = typical_pathlet_length(scene.cpu(), window);
-        typical_window_ = window;
+    const float typical_window = windowed ? window : 0.0f;  // streamlines (timeless) are drawn whole
+    if (typical_window != typical_window_) {  // a median over the scene's points: when the window changes
+        typical_length_ = typical_pathlet_length(scene.cpu(), typical_window);
+        typical_window_ = typical_window;
     }
     const KitBlock block{cam.view,
                          cam.proj,
@@ -286,6 +287,7 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     ctx.stat("segments", double(segments_));
     ctx.stat("segments_exact", double(ranges_.segments));  // before culling and the level of detail
     ctx.stat("lines", double(ranges_.first.size()));
+    ctx.stat("line_width", double(width_));  // world units, before the width hook (tests turn it into pixels)
 }
 
 namespace {

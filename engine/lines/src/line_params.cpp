@@ -6,7 +6,7 @@
 namespace pathlet::lines {
 
 const std::vector<std::string>& colormaps() {
-    static const std::vector<std::string> names{"green_red", "viridis", "coolwarm", "grey"};
+    static const std::vector<std::string> names{"green_red", "viridis", "coolwarm", "grey", "direction"};
     return names;
 }
 
@@ -23,6 +23,9 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
         .param_float("line_width", 0.0, 0.0, 1e4,
                      "quad width in world units, halo included; 0 = auto: 0.5 % of the data's bounding-box "
                      "diagonal (~3.5 px at 720p when the data fills the frame; 1.1 mm on the phantom)")
+        .param_float("width_factor", 1.0, 0.01, 100.0,
+                     "the auto width (line_width 0) times this: how a graph widens or thins its lines relative to the "
+                     "data (variant 3 tapers its ends, so it draws them wider); an explicit line_width is used as given")
         .param_float("halo", 0.2, 0.0, 0.9,
                      "fraction of the width drawn as halo, split between both rims (study: 20 %); 0 = off")
         .param_float("halo_min_px", 1.0, 0.0, 16.0,
@@ -35,7 +38,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                      "how far the halo is pushed back at the rim, in normalised linear depth: neighbours closer "
                      "than this merge, farther lines get a gap")
         .param_enum("colormap", "green_red", colormaps(),
-                    "speed colour map: green_red (study: green slow, yellow, red fast), viridis, coolwarm, grey")
+                    "speed colour map: green_red (study: green slow, yellow, red fast), viridis, coolwarm, grey; or "
+                    "direction: RGB = |dx|, |dy|, |dz| of the line's unit tangent (the tractography convention)")
         .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile")
         .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's 99th percentile")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour of pixels without lines")

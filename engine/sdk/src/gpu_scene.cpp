@@ -94,6 +94,9 @@ void GpuScene::upload(const Scene& scene) {
             smin_ = pick(0.01);
             smax_ = pick(0.99);
             if (!(smax_ > smin_)) smin_ = pl.speed_min(), smax_ = pl.speed_max();
+            // Streamlines have one pseudo-speed: the middle of the map for all, not noise from
+            // its last bits.
+            if (pl.timeless) smin_ = 0.0f, smax_ = 2.0f * pick(0.5);
         }
     }
 

@@ -53,9 +53,10 @@ Hooks hooks(const PassContext& ctx);
 const std::vector<std::string>& colormaps();
 int colormap_index(const std::string& name);
 
-// The shared line parameters: window, line_width, halo, halo_min_px, halo_color, halo_depth,
-// colormap, speed_min, speed_max, background, lod, and the hook files color_hook and width_hook
-// (their defaults for this pass type in `defaults`). Declared here once for every line pass.
+// The shared line parameters: window, line_width, width_factor, halo, halo_min_px, halo_color,
+// halo_depth, colormap, speed_min, speed_max, background, lod, cull, and the hook files
+// color_hook and width_hook (their defaults for this pass type in `defaults`). Declared here
+// once for every line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults = {});
 // LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id and edge.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
@@ -104,6 +105,7 @@ private:
     void tile_depth(PassContext& ctx, const ShaderProgram& prog, GLuint depth, glm::ivec2 size);
 
     GLenum depth_func_ = GL_LEQUAL;
+    float width_ = 0.0f;  // world units, this frame
     GpuScene::Ranges ranges_;
     bool lod_on_ = false, width_hooked_ = false;
     struct {

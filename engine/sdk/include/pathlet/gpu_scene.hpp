@@ -81,7 +81,9 @@ public:
         return d > 0.0f ? 0.005f * d : 1.0f;
     }
     float auto_line_width() const { return auto_line_width(bounds_); }
-    float line_width(float param) const { return param > 0.0f ? param : auto_line_width(); }
+    // A pass's width: its line_width in world units when set (> 0), else the auto width times
+    // its width_factor (a graph that wants wider lines says so relative to the data).
+    float line_width(float param, float factor = 1.0f) const { return param > 0.0f ? param : factor * auto_line_width(); }
     // The widest line width any line pass has drawn this scene with (world units, before the
     // width hook, which is clamped to kMaxWidthHook): lines::screen_rect pads by it, so post
     // passes that skip the border never cut a wide line. Noted by lines::Drawer.

@@ -29,13 +29,25 @@ struct LineRange {
     uint32_t count = 0;  // number of points (>= 2 for a drawable line)
 };
 
-// Pathlines: per point position, time (s) and velocity; lines are ranges of points.
+// Units of a data set where its source says them ("mm", "s", "mm/s"); "" = not known, and
+// then nothing shows one (the legend says "speed", the time label has no "s").
+struct Units {
+    std::string length, time, velocity;
+    bool operator==(const Units&) const = default;
+};
+
+// Pathlines: per point position, time and velocity; lines are ranges of points.
 // Time increases along each line (importers sort or reject otherwise).
 struct Pathlines {
     std::vector<glm::vec3> position;
     std::vector<float> time;
     std::vector<glm::vec3> velocity;
     std::vector<LineRange> lines;
+    Units units;
+    // Streamlines without a time of their own (tractography, centrelines): `time` is a
+    // pseudo-time along the arc length and `velocity` the tangent at a constant pseudo-speed;
+    // line passes draw these lines whole and the overlay shows no time or speed legend.
+    bool timeless = false;
 
     size_t point_count() const { return position.size(); }
     size_t line_count() const { return lines.size(); }
