@@ -11,8 +11,10 @@ cmake -S "$SRC/plugins/example_vignette" -B "$WORK/plugin" -DCMAKE_PREFIX_PATH="
       -DCMAKE_BUILD_TYPE=Release >"$WORK/configure.log"
 cmake --build "$WORK/plugin" >"$WORK/build.log"
 PATHLET="$WORK/prefix/bin/pathlet"
-"$PATHLET" passes --plugin-dir "$WORK/plugin" | tee "$WORK/passes.txt" | grep -q "^vignette "
-"$PATHLET" passes --describe vignette --plugin-dir "$WORK/plugin" | grep -q "strength (float"
+"$PATHLET" passes --plugin-dir "$WORK/plugin" >"$WORK/passes.txt"
+grep -q "^vignette " "$WORK/passes.txt"
+"$PATHLET" passes --describe vignette --plugin-dir "$WORK/plugin" >"$WORK/vignette.txt"
+grep -q "strength (float" "$WORK/vignette.txt"
 "$PATHLET" render "$SRC/plugins/example_vignette/vignette_demo.json" --plugin-dir "$WORK/plugin" \
   --data "$SRC/tests/engine/data/two_lines.vtk" --time 0 --size 64x48 --out "$WORK/out" --quiet >"$WORK/render.log"
 test -s "$WORK/out/vignette_demo/00000.png"
@@ -33,7 +35,8 @@ test -f "$WORK/prefix/lib/pathlet/passes/gbuffer/README.md"
 cmake -S "$SRC/plugins/example_fade" -B "$WORK/fade" -DCMAKE_PREFIX_PATH="$WORK/prefix" \
       -DCMAKE_BUILD_TYPE=Release >"$WORK/fade-configure.log"
 cmake --build "$WORK/fade" >"$WORK/fade-build.log"
-"$PATHLET" passes --describe desaturate_fade --plugin-dir "$WORK/fade" | grep -q "start (float"
+"$PATHLET" passes --describe desaturate_fade --plugin-dir "$WORK/fade" >"$WORK/desaturate.txt"
+grep -q "start (float" "$WORK/desaturate.txt"
 # It replaces variant 1's gbuffer pass through a graph that extends the installed variant 1.
 "$PATHLET" render "$SRC/plugins/example_fade/desaturate_v1.json" --plugin-dir "$WORK/fade" \
   --data "$SRC/tests/engine/data/two_lines.vtk" --time 1 --size 96x64 --out "$WORK/out" --quiet >"$WORK/fade-render.log"

@@ -105,7 +105,6 @@ private:
     void tile_depth(PassContext& ctx, const ShaderProgram& prog, GLuint depth, glm::ivec2 size);
 
     GLenum depth_func_ = GL_LEQUAL;
-    float width_ = 0.0f;  // world units, this frame
     GpuScene::Ranges ranges_;
     bool lod_on_ = false, width_hooked_ = false;
     struct {
