@@ -1,13 +1,11 @@
 #include "camera.hpp"
 
-#include "io/limits.hpp"
+#include "util/text.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace pathlet {
 
@@ -75,11 +73,7 @@ glm::vec3 catmull_rom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, fl
 }  // namespace
 
 CameraPath CameraPath::parse(const std::string& text, const std::string& path) {
-    if (io::json_nesting_depth(text, io::max_json_depth()).first_too_deep != size_t(-1))
-        throw DataError(path + ": nesting deeper than " + std::to_string(io::max_json_depth()) +
-                        " levels; a camera path needs three (PATHLET_MAX_JSON_DEPTH raises the cap)");
-    json j = json::parse(text, nullptr, false, true);
-    if (j.is_discarded()) throw DataError(path + ": not valid JSON");
+    const json j = text::parse_json_of(path, text, "camera path");
     if (!j.is_object() || !j.contains("keyframes") || !j["keyframes"].is_array() || j["keyframes"].empty())
         throw DataError(path + ":/keyframes: expected a non-empty array of {time, eye, target, up, fov}");
     CameraPath cp;
@@ -104,11 +98,7 @@ CameraPath CameraPath::parse(const std::string& text, const std::string& path) {
 }
 
 CameraPath CameraPath::load(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw DataError(path + ": cannot open camera path");
-    std::stringstream s;
-    s << in.rdbuf();
-    return parse(s.str(), path);
+    return parse(text::read_json_text(path, "camera path"), path);
 }
 
 Camera CameraPath::at(double t, const Bounds& b, glm::ivec2 size) const {

@@ -2,12 +2,11 @@
 // the file, a JSON pointer to the bad value and a did-you-mean for misspelt keys.
 #include "experiment.hpp"
 
-#include "graph/graph_internal.hpp"
+#include "util/text.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,8 +14,8 @@ namespace pathlet::cli::bench {
 namespace {
 
 using nlohmann::json;
-using graph_detail::did_you_mean;
-using graph_detail::pointer_escape;
+using text::did_you_mean;
+using text::pointer_escape;
 
 struct Ctx {
     std::string origin;
@@ -172,15 +171,7 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
 }
 
 Experiment load_experiment(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open the experiment file");
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& err) {
-        throw std::runtime_error(path + ": not valid JSON: " + err.what());
-    }
-    return parse_experiment(j, path);
+    return parse_experiment(text::read_json_file(path, "experiment file"), path);
 }
 
 std::vector<Run> plan_runs(const Experiment& e) {

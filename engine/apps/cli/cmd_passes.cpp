@@ -1,8 +1,9 @@
 // pathlet passes [--describe TYPE]: what pass types the plugin search path provides.
-#include "args.hpp"
 #include "commands.hpp"
+#include "common_options.hpp"
 #include "graph/graph_model.hpp"
 #include "runtime.hpp"
+#include "util/text.hpp"
 
 #include <cstdio>
 
@@ -11,29 +12,32 @@ namespace {
 
 int run(const std::vector<std::string>& argv) {
     Args a("passes", "Lists the pass types found on the plugin search path, with the file each comes from.");
-    a.option("describe", "TYPE", "", "print the parameters and pins of one pass type")
-        .multi("plugin-dir", "DIR", "also load plugins from DIR (before PATHLET_PLUGIN_PATH and the built-in folder)")
-        .flag("json", "print the declarations as JSON (for tools and docs)")
-        .flag("markdown", "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them "
-                          "(scripts/update-pass-docs.sh)")
+    std::string describe;
+    bool as_json = false, markdown = false;
+    PluginOptions plugins;
+    a.option("describe", describe, "TYPE", "print the parameters and pins of one pass type");
+    plugins.declare(a);
+    a.flag("json", as_json, "print the declarations as JSON (for tools and docs)")
+        .flag("markdown", markdown, "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them "
+                                    "(scripts/update-pass-docs.sh)")
         .example("pathlet passes", "list all pass types")
         .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
     if (!a.parse(argv)) return 0;
     Runtime rt;
-    rt.load_plugins(a.all("plugin-dir"));
-    if (a.has("describe")) {
-        const PassTypeInfo* t = rt.registry.find(a.get("describe"));
+    rt.load_plugins(plugins.dirs);
+    if (!describe.empty()) {
+        const PassTypeInfo* t = rt.registry.find(describe);
         if (!t) {
-            std::string hint = closest_match(a.get("describe"), rt.registry.names());
-            std::fprintf(stderr, "pathlet passes: no pass type '%s'%s%s\n", a.get("describe").c_str(),
+            std::string hint = text::closest_match(describe, rt.registry.names());
+            std::fprintf(stderr, "pathlet passes: no pass type '%s'%s%s\n", describe.c_str(),
                          hint.empty() ? "" : ("; did you mean '" + hint + "'?").c_str(),
                          rt.plugin_problems_note().c_str());
             return 1;
         }
-        std::fputs((a.has("markdown") ? t->markdown() : t->describe()).c_str(), stdout);
+        std::fputs((markdown ? t->markdown() : t->describe()).c_str(), stdout);
         return 0;
     }
-    if (a.has("json")) {
+    if (as_json) {
         json out = json::array();
         for (const auto* t : rt.registry.all()) {
             json pt = {{"type", t->type}, {"doc", t->doc}, {"file", t->plugin_file}, {"params", json::array()}, {"pins", json::array()}};
@@ -55,7 +59,7 @@ int run(const std::vector<std::string>& argv) {
     }
     if (rt.registry.all().empty()) {
         std::printf("(no pass types found) searched:\n");
-        for (const auto& d : PluginHost::search_path(a.all("plugin-dir"))) std::printf("  %s\n", d.c_str());
+        for (const auto& d : PluginHost::search_path(plugins.dirs)) std::printf("  %s\n", d.c_str());
     }
     for (const auto& p : rt.host.problems()) std::fprintf(stderr, "error: %s\n", p.c_str());
     return rt.host.problems().empty() ? 0 : 1;

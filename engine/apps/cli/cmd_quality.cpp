@@ -3,13 +3,13 @@
 // against a ray-traced AO of the same frame (Embree, tube geometry of the visible pathlets).
 // The graph is run with two extra bindings added in memory: gbuffer's line_id and bilateral's
 // ao_smooth (the AO that reaches the image), read back after every frame.
-#include "args.hpp"
 #include "commands.hpp"
+#include "common_options.hpp"
+#include "executor.hpp"
 #include "image_io.hpp"
 #include "renderer.hpp"
-#include "scene_args.hpp"
-#include "executor.hpp"
 #include "util/atomic_file.hpp"
+#include "util/text.hpp"
 
 #include "ao_error.hpp"
 #include "flicker.hpp"
@@ -17,8 +17,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace pathlet::cli {
 namespace {
@@ -31,18 +29,6 @@ struct Patch {
     std::string why_not;  // non-empty: not measurable
     std::string line_id, normal_depth, ao;
 };
-
-json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot read");
-    std::stringstream s;
-    s << in.rdbuf();
-    try {
-        return json::parse(s.str(), nullptr, true, /*ignore_comments=*/true);
-    } catch (const json::exception& e) {
-        throw std::runtime_error(path + ": not valid JSON: " + e.what());
-    }
-}
 
 // Binds gbuffer.line_id and the AO that reaches the image, and keeps them (outputs without
 // capture) so the compiler does not cull them.
@@ -162,40 +148,38 @@ int run(const std::vector<std::string>& argv) {
            "change of AO where the same line is seen at the same depth) against the change of the geometry,\n"
            "and the error (MAE, correlation) of the screen-space AO against a CPU ray-traced AO (Embree,\n"
            "tubes of the visible pathlets, cosine-weighted rays) of the last frame, with an error image.");
-    a.positional("GRAPH", "graph file or shipped graph name (default: variant1_lineao)", false)
-        .option("time", "A:B:STEP", "9:9.4:0.04", "animation times (frames at A, A+STEP, ... <= B)")
-        .option("size", "WxH", "320x180", "output size in pixels")
-        .option("rays", "N", "256", "ray-traced AO: rays per pixel")
-        .option("max-distance", "WIDTHS", "10", "ray-traced AO: ray length in line widths")
-        .option("depth-tolerance", "D", "0.002", "flicker: largest change of linear depth that counts as unchanged")
-        .option("out", "DIR", "out/quality", "folder for the per-pixel error image")
-        .multi("set", "NAME=VALUE", "override a graph variable or a pass parameter");
-    add_scene_options(a);
-    if (!a.parse(argv)) return 0;
     RenderOptions opt;
-    try {
-        opt.graph_path = resolve_graph_path(a.pos("GRAPH").empty() ? "variant1_lineao" : a.pos("GRAPH"));
-        opt.size = parse_size(a.get("size"));
-        opt.time = parse_time_range(a.get("time"));
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    const int rays = int(a.integer("rays"));
+    std::string graph = "variant1_lineao", out_dir = "out/quality";
+    int rays = 256;
+    float reach = 10.0f, tol = 0.002f;
+    PluginOptions plugins;
+    SceneOptions data;
+    opt.time = parse_time_range("9:9.4:0.04");
+    opt.size = {320, 180};
+    a.positional("GRAPH", graph, "graph file or shipped graph name (default: variant1_lineao)", false)
+        .option("time", opt.time, "A:B:STEP", "animation times (frames at A, A+STEP, ... <= B)");
+    declare_size(a, opt.size, "output size in pixels");
+    a.option("rays", rays, "N", "ray-traced AO: rays per pixel")
+        .option("max-distance", reach, "WIDTHS", "ray-traced AO: ray length in line widths")
+        .option("depth-tolerance", tol, "D", "flicker: largest change of linear depth that counts as unchanged")
+        .option("out", out_dir, "DIR", "folder for the per-pixel error image");
+    declare_sets(a, opt.sets);
+    plugins.declare(a);
+    data.declare(a);
+    if (!a.parse(argv)) return 0;
+    opt.graph_path = resolve_graph_path(graph);
     if (rays < 1) throw UsageError("--rays must be >= 1");
-    const float reach = float(a.number("max-distance")), tol = float(a.number("depth-tolerance"));
-    opt.sets = a.all("set");
     opt.write_images = false;
     opt.quiet = true;
     opt.warmup = 1;
 
-    json g = read_json(opt.graph_path);
+    json g = text::read_json_file(opt.graph_path, "graph file");
     const std::string name = g.value("name", fs::path(opt.graph_path).stem().string());
     Patch patch = patch_graph(g);
     if (!patch.why_not.empty()) {
         std::printf("%s: not measured: %s\n", name.c_str(), patch.why_not.c_str());
         return 0;
     }
-    const std::string out_dir = a.get("out");
     fs::create_directories(out_dir);
     const std::string patched = out_dir + "/." + name + ".quality.json";
     write_file_atomic(patched, g.dump(2));
@@ -204,8 +188,8 @@ int run(const std::vector<std::string>& argv) {
     // The patched copy is a temporary: gone however the run ends.
     struct Remove { std::string p; ~Remove() { std::error_code ec; fs::remove(p, ec); } } remove_patched{patched};
     Runtime rt;
-    rt.load_plugins({});
-    Scene scene = load_scene(a, true);
+    rt.load_plugins(plugins.dirs);
+    Scene scene = data.load(true);
     std::vector<Captured> frames;
     const std::vector<double> times = opt.time.times();
     RenderResult res = render(rt, scene, opt, [&](const Executor& ex, size_t frame) {

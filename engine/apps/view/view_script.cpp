@@ -1,21 +1,14 @@
 #include "view/view_script.hpp"
 
-#include <nlohmann/json.hpp>
+#include "util/text.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace pathlet::view {
 
 std::vector<ScriptEvent> load_script(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open the view script");
-    std::stringstream s;
-    s << in.rdbuf();
-    nlohmann::json j = nlohmann::json::parse(s.str(), nullptr, false, true);
-    if (j.is_discarded()) throw std::runtime_error(path + ": the view script is not valid JSON");
+    const nlohmann::json j = text::read_json_file(path, "view script");
     if (!j.is_array()) throw std::runtime_error(path + ":/: a view script is an array of events");
     static const std::vector<std::string> keys{"space", "left", "right", "up", "down", "r", "l", "s", "?"};
     std::vector<ScriptEvent> out;

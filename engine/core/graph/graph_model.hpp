@@ -168,7 +168,4 @@ std::string graph_to_dot(const CompiledGraph& cg, const GraphFile& g);
 std::string plan_to_text(const CompiledGraph& cg);   // order, lifetimes, memory before/after pooling
 json plan_to_json(const CompiledGraph& cg);
 
-// "did you mean": the closest candidate within a small edit distance, or "".
-std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
-
 }  // namespace pathlet
