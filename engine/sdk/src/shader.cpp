@@ -1,6 +1,6 @@
 #include <pathlet/shader.hpp>
 
-#include "graph/graph_internal.hpp"
+#include "util/text.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -198,7 +198,7 @@ GLint ShaderProgram::loc(const std::string& uniform) const {
     if (l < 0 && !declares(uniform)) {
         std::vector<std::string> names(declared_.begin(), declared_.end());
         throw ShaderError("program (" + files_ + ") has no uniform '" + uniform + "'" +
-                          graph_detail::did_you_mean(uniform, names) + " (a misspelt name would silently do nothing)");
+                          text::did_you_mean(uniform, names) + " (a misspelt name would silently do nothing)");
     }
     locs_[uniform] = l;
     return l;
