@@ -1,5 +1,6 @@
 #include "camera.hpp"
 
+#include "io/limits.hpp"
 #include "util/text.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -63,6 +64,11 @@ glm::vec3 vec3_at(const json& j, const std::string& key, const std::string& wher
     const json& v = j[key];
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
         throw DataError(where + "/" + key + ": expected [x, y, z], got " + v.dump());
+    const double cap = io::max_coordinate();  // the data's own limit: beyond it a float overflows the maths
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(v[i].get<double>()) <= cap))
+            throw DataError(where + "/" + key + "/" + std::to_string(i) + ": " + v[i].dump() +
+                            " is beyond the coordinate cap (PATHLET_MAX_COORDINATE)");
     return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
 }
 glm::vec3 catmull_rom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, float s) {

@@ -175,7 +175,8 @@ PATHLET_PLUGIN("overlay", {
                                "speed at the bar's top, as the line pass's; <= 0: the data's 99th percentile")
                   .param_string("speed_unit", "mm/s", "unit of the data's speeds, shown with the legend")
                   .param_float("font_px", 0.0, 0.0, 400.0, "text height in pixels; 0 = auto: output height / 28")
-                  .param_string("font", "", "a TrueType/OpenType font file; empty = DejaVu Sans (fonts-dejavu-core)")
+                  .param_string("font", "", "a TrueType/OpenType font file (.ttf, .otf, .ttc; nothing else is opened); empty = "
+                                            "DejaVu Sans (fonts-dejavu-core)")
                   .param_color("text_color", {0.12f, 0.12f, 0.12f}, "colour of the text and the bar's frame")
                   .input_texture("color", "rgba8", "the finished image")
                   .output_texture("final", "rgba8", "the image with time and legend")

@@ -1,5 +1,6 @@
 // util/text: the one copy of joining, quoting (messages, shells, CSV), did-you-mean and JSON
 // files read with the limits every input gets.
+#include "../support/error_text.hpp"
 #include "util/text.hpp"
 
 #include <pathlet/scene.hpp>
@@ -37,14 +38,7 @@ fs::path scratch_file(const std::string& name, const std::string& bytes) {
     return p;
 }
 
-std::string data_error(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const DataError& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string data_error(const std::function<void()>& f) { return test::error_text<DataError>(f); }
 
 }  // namespace
 

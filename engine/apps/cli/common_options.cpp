@@ -3,6 +3,7 @@
 #include "fraction_progress.hpp"
 #include "io/mesh_io.hpp"
 #include "phantom/phantom.hpp"
+#include "util/text.hpp"
 
 #include <cstdio>
 
@@ -46,6 +47,15 @@ Scene SceneOptions::load(bool quiet) const {
         io::LoadReport rep;
         scene.lines = io::load_pathlines(data, arrays.load_options(), &rep);
         scene.source = data;
+        // Nothing to draw is an error, not a blank picture (pathlet info still shows the numbers).
+        if (scene.lines.line_count() == 0) {
+            std::vector<std::string> dropped;
+            for (const auto& w : rep.warnings)
+                if (w.rfind("dropped", 0) == 0) dropped.push_back(w);
+            throw DataError(data + ": no line to draw after repair (" +
+                            (dropped.empty() ? std::string("the file holds no lines") : text::join(dropped, "; ")) +
+                            "); 'pathlet info " + text::shell_quote(data) + "' shows what it holds");
+        }
         for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", data.c_str(), w.c_str());
     }
     if (!mesh.empty()) {

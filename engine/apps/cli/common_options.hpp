@@ -40,6 +40,8 @@ struct SceneOptions {
     void declare(Args& a);
     bool given() const { return !data.empty() || !mesh.empty() || phantom.given; }
     // Loads what the options say; prints a one-line summary and any repair warnings to stderr.
+    // A data set with no line left to draw after repair is a DataError naming the file and what
+    // the repair dropped.
     Scene load(bool quiet) const;
 };
 
