@@ -398,7 +398,12 @@ int run(const std::vector<std::string>& argv) {
 
     const Plan plan = make_plan(o);
     Runtime rt;
-    rt.load_plugins(o.plugins.dirs);
+    o.plugins.load(rt);
+    try {  // every graph's plugin folders, trusted, before any work
+        for (const auto& [label, g] : plan.graphs.items()) rt.load_graph_plugins(parse_graph_file(g["path"].get<std::string>()));
+    } catch (const GraphError& e) {
+        return report_graph_error(e, rt);
+    }
     rt.ensure_gl(true);
     std::vector<std::string> command = {"pathlet", "bench"};
     command.insert(command.end(), argv.begin(), argv.end());

@@ -33,7 +33,7 @@ int run(const std::vector<std::string>& argv) {
         .example("pathlet graph graphs/isl.json --dot isl.dot", "graph picture as DOT");
     if (!a.parse(argv)) return 0;
     Runtime rt;
-    rt.load_plugins(plugins.dirs);
+    plugins.load(rt);
     std::string path = resolve_graph_path(graph);
     try {
         GraphFile g = rt.load_graph(path, sets);

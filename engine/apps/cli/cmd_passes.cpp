@@ -11,12 +11,26 @@ namespace pathlet::cli {
 namespace {
 
 int run(const std::vector<std::string>& argv) {
-    Args a("passes", "Lists the pass types found on the plugin search path, with the file each comes from.");
+    Args a("passes",
+           "Lists the pass types found on the plugin search path, with the file each comes from.\n"
+           "\n"
+           "Where plugins come from, and which are trusted (loading a plugin runs its code):\n"
+           "  - the search path: --plugin-dir folders, PATHLET_PLUGIN_PATH, the built-in folder. You chose\n"
+           "    these, so they are trusted.\n"
+           "  - \"plugin_dirs\" in a graph file: loaded only when trusted ('pathlet trust DIR' lists it in\n"
+           "    ~/.config/pathlet/trusted-plugin-dirs, honouring XDG_CONFIG_HOME) or for one run with\n"
+           "    --trust-graph-plugins. Otherwise render, bench, view and graph stop before loading\n"
+           "    anything and print the command that trusts the folder; validate reports the pass types\n"
+           "    the folder may provide without opening it.\n"
+           "Before any file is opened: it must be named pathlet_<name>.so (as pathlet_add_pass() builds it;\n"
+           "other files are skipped with a note), neither it nor its folder may be world-writable or\n"
+           "another user's (root's is fine), and its ELF symbol table, read without loading it, must hold\n"
+           "the pathlet_plugin_v1 entry point and this SDK's fingerprint (else: rebuild against this SDK).");
     std::string describe;
     bool as_json = false, markdown = false;
     PluginOptions plugins;
     a.option("describe", describe, "TYPE", "print the parameters and pins of one pass type");
-    plugins.declare(a);
+    plugins.declare(a, /*graph_files=*/false);
     a.flag("json", as_json, "print the declarations as JSON (for tools and docs)")
         .flag("markdown", markdown, "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them "
                                     "(scripts/update-pass-docs.sh)")
@@ -24,7 +38,7 @@ int run(const std::vector<std::string>& argv) {
         .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
     if (!a.parse(argv)) return 0;
     Runtime rt;
-    rt.load_plugins(plugins.dirs);
+    plugins.load(rt);
     if (!describe.empty()) {
         const PassTypeInfo* t = rt.registry.find(describe);
         if (!t) {
@@ -61,6 +75,7 @@ int run(const std::vector<std::string>& argv) {
         std::printf("(no pass types found) searched:\n");
         for (const auto& d : PluginHost::search_path(plugins.dirs)) std::printf("  %s\n", d.c_str());
     }
+    for (const auto& n : rt.host.notes()) std::fprintf(stderr, "note: %s\n", n.c_str());
     for (const auto& p : rt.host.problems()) std::fprintf(stderr, "error: %s\n", p.c_str());
     return rt.host.problems().empty() ? 0 : 1;
 }

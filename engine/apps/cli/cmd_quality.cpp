@@ -188,7 +188,7 @@ int run(const std::vector<std::string>& argv) {
     // The patched copy is a temporary: gone however the run ends.
     struct Remove { std::string p; ~Remove() { std::error_code ec; fs::remove(p, ec); } } remove_patched{patched};
     Runtime rt;
-    rt.load_plugins(plugins.dirs);
+    plugins.load(rt);
     Scene scene = data.load(true);
     std::vector<Captured> frames;
     const std::vector<double> times = opt.time.times();

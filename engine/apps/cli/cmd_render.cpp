@@ -89,7 +89,7 @@ int run(const std::vector<std::string>& argv) {
     if (!video_path.empty()) check_output_file(video_path, "the video (--video)");
 
     Runtime rt;
-    rt.load_plugins(plugins.dirs);
+    plugins.load(rt);
     Scene scene = data.load(opt.quiet);
     opt.time = time ? *time : TimeRange{scene.lines.time_min(), scene.lines.time_max(), 0.25};
     try {

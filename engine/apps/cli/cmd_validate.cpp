@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "common_options.hpp"
 #include "graph/graph_model.hpp"
+#include "plugin_trust.hpp"
 #include "runtime.hpp"
 
 #include <cstdio>
@@ -11,7 +12,9 @@ namespace {
 
 int run(const std::vector<std::string>& argv) {
     Args a("validate", "Checks graph files without rendering: syntax, pass types, parameters, pins, formats,\n"
-                       "cycles, writers. Every error is reported at once as FILE:/json/pointer: message.");
+                       "cycles, writers. Every error is reported at once as FILE:/json/pointer: message.\n"
+                       "A graph's plugin folders are loaded only when trusted (see 'pathlet trust --help'); an\n"
+                       "untrusted one is never opened, and pass types it may provide are reported as such.");
     std::vector<std::string> files, sets;
     PluginOptions plugins;
     a.rest("GRAPH", files, "graph file(s) to check");
@@ -20,13 +23,16 @@ int run(const std::vector<std::string>& argv) {
     a.example("pathlet validate graphs/*.json", "check every shipped graph");
     if (!a.parse(argv)) return 0;
     Runtime rt;
-    rt.load_plugins(plugins.dirs);
+    plugins.load(rt);
     int bad = 0;
     for (const auto& f : files) {
         std::vector<Diagnostic> diags;
         try {
             GraphFile g = parse_graph_file(f);
-            rt.load_graph_plugins(g);
+            rt.load_trusted_graph_plugins(g);  // an untrusted folder is never opened, only named
+            for (const auto& u : g.untrusted_plugin_dirs)
+                std::fprintf(stderr, "note: %s: plugin folder %s is not trusted; its plugins were not loaded (%s)\n",
+                             f.c_str(), u.dir.c_str(), trust_command(u.dir).c_str());
             apply_overrides(g, sets, rt.registry, diags);
             auto more = validate_graph(g, rt.registry);
             diags.insert(diags.end(), more.begin(), more.end());

@@ -474,7 +474,7 @@ int run(const std::vector<std::string>& argv) {
     Input input;
     win.open(o.size, /*vsync=*/o.script.empty(), &input, install_callbacks);
     Runtime rt;
-    rt.load_plugins(o.plugins.dirs);
+    o.plugins.load(rt);
     const Scene scene = o.data.load(false);
     rt.gl = GlContext::adopt_current("GLFW window");
     std::fprintf(stderr, "%s\n", rt.gl->summary().c_str());

@@ -9,9 +9,18 @@
 
 namespace pathlet::cli {
 
-void PluginOptions::declare(Args& a) {
+void PluginOptions::declare(Args& a, bool graph_files) {
     a.multi("plugin-dir", dirs, "DIR",
             "also load plugins from DIR (searched before PATHLET_PLUGIN_PATH and the built-in folder)");
+    if (graph_files)
+        a.flag("trust-graph-plugins", trust_graph_plugins,
+               "load the plugin folders the graph files name (\"plugin_dirs\") for this run even when they are not "
+               "trusted (see 'pathlet trust --help'); loading a plugin runs its code");
+}
+
+void PluginOptions::load(Runtime& rt) const {
+    rt.trust_graph_plugins = trust_graph_plugins;
+    rt.load_plugins(dirs);
 }
 
 void ArrayOptions::declare(Args& a) {

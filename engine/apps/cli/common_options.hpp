@@ -9,6 +9,7 @@
 
 #include "io/pathline_io.hpp"
 #include "profiler/profiler.hpp"
+#include "runtime.hpp"
 
 #include <string>
 #include <vector>
@@ -16,10 +17,13 @@
 namespace pathlet::cli {
 
 // --plugin-dir DIR (repeatable): folders of pass plugins searched before PATHLET_PLUGIN_PATH
-// and the built-in folder.
+// and the built-in folder; --trust-graph-plugins: load the plugin folders graph files name for
+// this run, trusted or not (plugin_trust.hpp).
 struct PluginOptions {
     std::vector<std::string> dirs;
-    void declare(Args& a);
+    bool trust_graph_plugins = false;
+    void declare(Args& a, bool graph_files = true);
+    void load(Runtime& rt) const;  // the search path's plugins, and the trust setting
 };
 
 // How pathline files are read: --time-array, --velocity-array, --time-step (render, bench,

@@ -85,6 +85,13 @@ struct GraphFile {
     std::vector<PassDecl> passes;
     std::vector<OutputDecl> outputs;
     std::vector<std::string> plugin_dirs;  // "plugin_dirs": folders of plugins, resolved against the file's folder
+    // Folders of plugin_dirs whose plugins were not loaded because the folder is not trusted
+    // (Runtime::load_graph_plugins, validate): "unknown pass type" says so instead of guessing a typo.
+    struct UntrustedDir {
+        std::string dir;                 // canonical
+        std::vector<std::string> files;  // its plugin files, never opened
+    };
+    std::vector<UntrustedDir> untrusted_plugin_dirs;
 };
 
 // ---- compiled ---------------------------------------------------------------------------
