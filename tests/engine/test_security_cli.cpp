@@ -65,7 +65,7 @@ const std::string kData = " --data " + src("tests/engine/data/two_lines.vtk") + 
 TEST_F(Security, AnUntrustedGraphFolderIsNeverOpened) {
     const fs::path g = graph("g.json", "plugins");
     const std::string canonical = fs::canonical(plugins).string();
-    for (const std::string args : {"graph " + g.string() + " --plan", "render " + g.string() + " --no-images --quiet" + kData,
+    for (const std::string& args : {"graph " + g.string() + " --plan", "render " + g.string() + " --no-images --quiet" + kData,
                                    "bench " + g.string() + " --frames 1 --warmup 0 --quiet" + kData}) {
         CliRun r = run(args);
         EXPECT_EQ(r.code, 1) << args << "\n" << r.err;
@@ -206,7 +206,7 @@ TEST_F(Security, APluginOfAnotherSdkIsRefusedWithRebuild) {
 }
 
 TEST_F(Security, ShaderNamesResolveOnlyOnTheShaderPath) {
-    for (const std::string name : {"/etc/passwd", "../../../../../../etc/passwd", "sub/gradient.frag", ".."}) {
+    for (const std::string& name : std::vector<std::string>{"/etc/passwd", "../../../../../../etc/passwd", "sub/gradient.frag", ".."}) {
         const fs::path g = root / "shader.json";
         std::ofstream(g) << R"({"version": 1, "passes": [{"name": "p", "type": "fullscreen", "params": {"shader": ")"
                          << name << R"("}}], "outputs": [{"resource": "p.color"}]})";
@@ -221,7 +221,7 @@ TEST_F(Security, AnEmptyDataSetIsAnErrorNamingTheFileAndTheRepair) {
     const fs::path data = root / "points.txt";
     std::ofstream(data) << "0 0 0\n1 1 1\n";
     const std::string args = " --data " + data.string() + " --time 0 --size 32x24";
-    for (const std::string cmd : {"render --no-images --quiet", "bench isl --frames 1 --warmup 0 --quiet"}) {
+    for (const std::string& cmd : std::vector<std::string>{"render --no-images --quiet", "bench isl --frames 1 --warmup 0 --quiet"}) {
         CliRun r = run(cmd + args);
         EXPECT_EQ(r.code, 1) << cmd << "\n" << r.err;
         EXPECT_NE(r.err.find(data.string() + ": no line to draw after repair (dropped 2 lines with fewer than 2"),
