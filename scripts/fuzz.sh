@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(vtk_legacy vtp text_rows native trk tck gltf glb stl obj vtk_field vti hdf5 graph camera)
+[ ${#TARGETS[@]} -eq 0 ] && mapfile -t TARGETS < <(grep -v '^#' tests/fuzz/targets.txt)
 if [ ! -x build-san/bin/make_seeds ]; then
   CC=clang-14 CXX=clang++-14 cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPATHLET_FUZZ=ON \
     -DPATHLET_BUILD_BENCHMARKS=OFF >/dev/null

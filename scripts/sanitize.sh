@@ -4,7 +4,7 @@
 # CI runs it after scripts/test.sh; scripts/fuzz.sh reuses the same build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FUZZ_TARGETS=(vtk_legacy vtp text_rows native trk tck gltf glb stl obj vtk_field vti hdf5 graph camera)
+mapfile -t FUZZ_TARGETS < <(grep -v '^#' tests/fuzz/targets.txt)
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPATHLET_FUZZ=ON \
   -DPATHLET_BUILD_BENCHMARKS=OFF "$@" >/dev/null
 targets=(make_seeds test_io test_trace test_graph)

@@ -16,7 +16,9 @@ set(PATHLET_REAL_DATA_DIR "${PROJECT_SOURCE_DIR}/../shared/data/real" CACHE PATH
 # Every GL test runs on Mesa's llvmpipe, pinned, with a hermetic shader cache.
 # PATHLET_UPDATE_GOLDENS is never inherited from the caller: goldens change only through
 # scripts/update-goldens.sh.
-set(PATHLET_TEST_ENV "PATHLET_UPDATE_GOLDENS=0"
+# XDG_CONFIG_HOME: the plugin trust file of every test run lives in the build tree, never in the
+# user's ~/.config.
+set(PATHLET_TEST_ENV "PATHLET_UPDATE_GOLDENS=0" "XDG_CONFIG_HOME=${PROJECT_BINARY_DIR}/test-config"
   "LIBGL_ALWAYS_SOFTWARE=1" "GALLIUM_DRIVER=llvmpipe" "MESA_SHADER_CACHE_DISABLE=true"
   "PATHLET_REAL_DATA_DIR=${PATHLET_REAL_DATA_DIR}" "PATHLET_PLUGIN_PATH=" "DISPLAY=" "WAYLAND_DISPLAY=")
 

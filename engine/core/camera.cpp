@@ -1,13 +1,12 @@
 #include "camera.hpp"
 
 #include "io/limits.hpp"
+#include "util/text.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace pathlet {
 
@@ -67,6 +66,11 @@ glm::vec3 vec3_at(const json& j, const std::string& key, const std::string& wher
     const json& v = j[key];
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
         throw DataError(where + "/" + key + ": expected [x, y, z], got " + v.dump());
+    const double cap = io::max_coordinate();  // the data's own limit: beyond it a float overflows the maths
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(v[i].get<double>()) <= cap))
+            throw DataError(where + "/" + key + "/" + std::to_string(i) + ": " + v[i].dump() +
+                            " is beyond the coordinate cap (PATHLET_MAX_COORDINATE)");
     return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
 }
 glm::vec3 catmull_rom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, float s) {
@@ -77,11 +81,7 @@ glm::vec3 catmull_rom(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, fl
 }  // namespace
 
 CameraPath CameraPath::parse(const std::string& text, const std::string& path) {
-    if (io::json_nesting_depth(text, io::max_json_depth()).first_too_deep != size_t(-1))
-        throw DataError(path + ": nesting deeper than " + std::to_string(io::max_json_depth()) +
-                        " levels; a camera path needs three (PATHLET_MAX_JSON_DEPTH raises the cap)");
-    json j = json::parse(text, nullptr, false, true);
-    if (j.is_discarded()) throw DataError(path + ": not valid JSON");
+    const json j = text::parse_json_of(path, text, "camera path");
     if (!j.is_object() || !j.contains("keyframes") || !j["keyframes"].is_array() || j["keyframes"].empty())
         throw DataError(path + ":/keyframes: expected a non-empty array of {time, eye, target, up, fov}");
     CameraPath cp;
@@ -106,11 +106,7 @@ CameraPath CameraPath::parse(const std::string& text, const std::string& path) {
 }
 
 CameraPath CameraPath::load(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw DataError(path + ": cannot open camera path");
-    std::stringstream s;
-    s << in.rdbuf();
-    return parse(s.str(), path);
+    return parse(text::read_json_text(path, "camera path"), path);
 }
 
 Camera CameraPath::at(double t, const Bounds& b, glm::ivec2 size) const {

@@ -1,8 +1,12 @@
 #include "plugin_host.hpp"
 
+#include "plugin_elf.hpp"
+
 #include <pathlet/plugin.hpp>
 
 #include <dlfcn.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -60,8 +64,61 @@ struct CollectingSink : PassSink {
 };
 }  // namespace
 
+PluginHost::FolderScan PluginHost::scan_dir(const std::string& dir) {
+    FolderScan scan;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (it->path().extension() != ".so") continue;
+        (name.rfind("pathlet_", 0) == 0 && name.size() > 11 ? scan.plugins : scan.others).push_back(it->path().string());
+    }
+    std::sort(scan.plugins.begin(), scan.plugins.end());
+    std::sort(scan.others.begin(), scan.others.end());
+    return scan;
+}
+
+namespace {
+
+// Who may change a file or folder: its owner (this user or root only) and, when world-writable,
+// anyone. "" when only this user or root can.
+std::string write_access_problem(const std::string& path, const struct stat& st, const char* what) {
+    if (st.st_mode & S_IWOTH)
+        return path + ": " + what + " is world-writable: anyone on this machine could put code in it (chmod o-w " +
+               path + ")";
+    if (st.st_uid != ::geteuid() && st.st_uid != 0)
+        return path + ": " + what + " belongs to another user (uid " + std::to_string(st.st_uid) +
+               "), who could put code in it";
+    return "";
+}
+
+}  // namespace
+
+std::string PluginHost::folder_problem(const std::string& dir) {
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0) return "";  // nothing there, nothing loaded
+    return write_access_problem(dir, st, "plugin folder");
+}
+
 void PluginHost::load_file(const std::string& path) {
-    if (!fs::exists(path)) throw PluginError(path + ": file not found");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) throw PluginError(path + ": file not found");
+    if (!S_ISREG(st.st_mode)) throw PluginError(path + ": not a regular file; never opened");
+    if (std::string why = write_access_problem(path, st, "plugin file"); !why.empty())
+        throw PluginError(why + "; never opened");
+    PluginSymbols sym;
+    try {
+        sym = read_plugin_symbols_of_file(path);
+    } catch (const ElfError& e) {
+        throw PluginError(path + ": not a Pathlet plugin (" + e.what() + "); never opened");
+    }
+    if (!sym.entry)
+        throw PluginError(path + ": not a Pathlet plugin (no " PATHLET_PLUGIN_ENTRY
+                                 " entry point; build it with pathlet_add_pass() and PATHLET_PLUGIN()); never opened");
+    if (sym.sdk != PATHLET_SDK_FINGERPRINT)
+        throw PluginError(path + ": built against " +
+                          (sym.sdk.empty() ? std::string("an older SDK (no SDK fingerprint)")
+                                           : "another SDK (fingerprint " + sym.sdk + ")") +
+                          ", this engine's SDK is " PATHLET_SDK_FINGERPRINT ": rebuild against this SDK; never opened");
     // RTLD_NOW: an unresolved symbol fails here, cleanly, instead of killing the process at
     // its first call. RTLD_LOCAL: plugins cannot clash with each other's symbols.
     void* h = dlopen(fs::absolute(path).c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -126,13 +183,18 @@ void PluginHost::load_dirs(const std::vector<std::string>& dirs) {
         registry_.add_searched_dir(dir);
         std::error_code ec;
         if (!fs::is_directory(dir, ec)) continue;
-        std::vector<fs::path> files;
-        for (const auto& e : fs::directory_iterator(dir, ec))
-            if (e.path().extension() == ".so") files.push_back(e.path());
-        std::sort(files.begin(), files.end());
-        for (const auto& f : files) {
+        const FolderScan scan = scan_dir(dir);
+        if (scan.plugins.empty() && scan.others.empty()) continue;
+        if (std::string why = folder_problem(dir); !why.empty()) {
+            problems_.push_back(why + "; nothing loaded from it");
+            continue;
+        }
+        for (const auto& f : scan.others)
+            notes_.push_back(f + ": skipped, not named like a Pathlet plugin (pathlet_<name>.so, as pathlet_add_pass() "
+                                 "builds them); never opened");
+        for (const auto& f : scan.plugins) {
             try {
-                load_file(f.string());
+                load_file(f);
             } catch (const PluginError& e) {
                 problems_.push_back(e.what());
             }

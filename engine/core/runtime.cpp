@@ -1,21 +1,83 @@
 #include "runtime.hpp"
 
+#include "plugin_trust.hpp"
+
 #include <algorithm>
 #include <cstdio>
 
 namespace pathlet {
 
 void Runtime::load_plugins(const std::vector<std::string>& extra_dirs) {
-    host.load_dirs(PluginHost::search_path(extra_dirs));
+    const std::vector<std::string> dirs = PluginHost::search_path(extra_dirs);
+    for (const auto& d : dirs)
+        if (std::string c = canonical_dir(d); !c.empty()) run_trusted_.push_back(c);
+    host.load_dirs(dirs);
+}
+
+namespace {
+// Folders of the graph not searched yet (a folder also on --plugin-dir, by any name, is
+// loaded once).
+std::vector<std::string> fresh_dirs(const GraphFile& g, const PassRegistry& registry) {
+    std::vector<std::string> fresh;
+    const auto& seen = registry.searched_dirs();
+    for (const auto& d : g.plugin_dirs) {
+        const std::string c = canonical_dir(d);
+        if (std::find(seen.begin(), seen.end(), d) == seen.end() &&
+            (c.empty() || std::find(seen.begin(), seen.end(), c) == seen.end()))
+            fresh.push_back(c.empty() ? d : c);
+    }
+    return fresh;
+}
+}  // namespace
+
+std::vector<GraphFile::UntrustedDir> Runtime::untrusted_plugin_dirs(const GraphFile& g) const {
+    std::vector<GraphFile::UntrustedDir> out;
+    if (trust_graph_plugins) return out;
+    std::vector<std::string> trusted;  // read once, only when a graph names a folder with plugins
+    bool read = false;
+    for (const auto& d : g.plugin_dirs) {
+        const std::string c = canonical_dir(d);
+        if (c.empty()) continue;  // no such folder: nothing to load
+        PluginHost::FolderScan scan = PluginHost::scan_dir(c);
+        if (scan.plugins.empty()) continue;
+        if (std::find(run_trusted_.begin(), run_trusted_.end(), c) != run_trusted_.end()) continue;
+        if (!read) trusted = read_trusted_dirs(), read = true;
+        if (std::find(trusted.begin(), trusted.end(), c) != trusted.end()) continue;
+        if (std::none_of(out.begin(), out.end(), [&](const auto& u) { return u.dir == c; }))
+            out.push_back({c, std::move(scan.plugins)});
+    }
+    return out;
 }
 
 void Runtime::load_graph_plugins(const GraphFile& g) {
-    std::vector<std::string> fresh;
-    for (const auto& d : g.plugin_dirs) {
-        const auto& seen = registry.searched_dirs();
-        if (std::find(seen.begin(), seen.end(), d) == seen.end()) fresh.push_back(d);
+    const auto untrusted = untrusted_plugin_dirs(g);
+    if (!untrusted.empty()) {
+        std::vector<Diagnostic> diags;
+        for (const auto& u : untrusted) {
+            std::string files;
+            for (const auto& f : u.files) files += "\n    " + f;
+            size_t i = 0;  // the entry of plugin_dirs that names it
+            while (i + 1 < g.plugin_dirs.size() && canonical_dir(g.plugin_dirs[i]) != u.dir) ++i;
+            diags.push_back({g.path, "/plugin_dirs/" + std::to_string(i),
+                             "plugin folder " + u.dir +
+                                 " is not trusted, so nothing was loaded (a graph file can name any folder, and "
+                                 "loading a plugin runs its code). It holds:" + files +
+                                 "\n  If you trust it: " + trust_command(u.dir) +
+                                 "   (or --trust-graph-plugins for this run only)"});
+        }
+        throw GraphError(diags);
     }
-    host.load_dirs(fresh);
+    host.load_dirs(fresh_dirs(g, registry));
+}
+
+void Runtime::load_trusted_graph_plugins(GraphFile& g) {
+    g.untrusted_plugin_dirs = untrusted_plugin_dirs(g);
+    std::vector<std::string> load;
+    for (const auto& d : fresh_dirs(g, registry))
+        if (std::none_of(g.untrusted_plugin_dirs.begin(), g.untrusted_plugin_dirs.end(),
+                         [&](const auto& u) { return u.dir == d; }))
+            load.push_back(d);
+    host.load_dirs(load);
 }
 
 GraphFile Runtime::load_graph(const std::string& path, const std::vector<std::string>& sets) {
@@ -36,9 +98,12 @@ GlContext& Runtime::ensure_gl(bool quiet) {
 }
 
 std::string Runtime::plugin_problems_note() const {
-    if (host.problems().empty()) return "";
-    std::string s = "\nnote: " + std::to_string(host.problems().size()) + " plugin(s) failed to load:";
-    for (const auto& p : host.problems()) s += "\n  " + p;
+    std::string s;
+    if (!host.problems().empty()) {
+        s += "\nnote: " + std::to_string(host.problems().size()) + " plugin(s) failed to load:";
+        for (const auto& p : host.problems()) s += "\n  " + p;
+    }
+    for (const auto& n : host.notes()) s += "\nnote: " + n;
     return s;
 }
 

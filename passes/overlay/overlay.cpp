@@ -202,7 +202,8 @@ PATHLET_PLUGIN("overlay", {
                                 "unit shown with the legend; empty = the data's velocity unit where its file says it "
                                 "(else the legend just says \"speed\")")
                   .param_float("font_px", 0.0, 0.0, 400.0, "text height in pixels; 0 = auto: output height / 28")
-                  .param_string("font", "", "a TrueType/OpenType font file; empty = DejaVu Sans (fonts-dejavu-core)")
+                  .param_string("font", "", "a TrueType/OpenType font file (.ttf, .otf, .ttc; nothing else is opened); empty = "
+                                            "DejaVu Sans (fonts-dejavu-core)")
                   .param_color("text_color", {0.12f, 0.12f, 0.12f}, "colour of the text and the bar's frame")
                   .input_texture("color", "rgba8", "the finished image")
                   .output_texture("final", "rgba8", "the image with time and legend")

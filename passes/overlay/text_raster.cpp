@@ -4,7 +4,9 @@
 #include FT_FREETYPE_H
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 namespace overlay {
@@ -21,7 +23,28 @@ std::string default_font() {
     return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // the error names the expected place
 }
 
+void check_font_file(const std::string& path) {
+    // A graph names the font (overlay.font): only a font file may be opened, never an arbitrary
+    // file the graph points at (/etc/passwd, a key). By name first, without opening anything.
+    const std::string ext = std::filesystem::path(path).extension().string();
+    std::string lower;
+    for (char c : ext) lower += char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string allowed = "allowed: regular TrueType/OpenType files named .ttf, .otf or .ttc";
+    if (lower != ".ttf" && lower != ".otf" && lower != ".ttc")
+        throw std::runtime_error("font '" + path + "' refused: not a font file name (" + allowed + ")");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw std::runtime_error("font '" + path + "' refused: not a regular file (" + allowed + ")");
+    // Then its first four bytes: the sfnt versions of TrueType and OpenType, or a collection.
+    char magic[4] = {};
+    std::ifstream(path, std::ios::binary).read(magic, 4);
+    const std::string m(magic, 4);
+    if (m != std::string("\0\1\0\0", 4) && m != "true" && m != "typ1" && m != "OTTO" && m != "ttcf")
+        throw std::runtime_error("font '" + path + "' refused: its content is not a TrueType/OpenType font (" + allowed + ")");
+}
+
 TextRaster::TextRaster(const std::string& font_file, int pixel_size) : impl_(new Impl), size_(pixel_size) {
+    check_font_file(font_file);
     if (FT_Init_FreeType(&impl_->lib)) throw std::runtime_error("FreeType could not start");
     if (FT_New_Face(impl_->lib, font_file.c_str(), 0, &impl_->face)) {
         FT_Done_FreeType(impl_->lib);

@@ -15,9 +15,14 @@ struct TextBitmap {
     std::vector<uint8_t> coverage;  // row 0 at the top, width * height
 };
 
+// Throws std::runtime_error unless `path` is a regular .ttf, .otf or .ttc file that starts like
+// a TrueType/OpenType font: the check before a font a graph names is opened.
+void check_font_file(const std::string& path);
+
 class TextRaster {
 public:
-    // Throws std::runtime_error naming the font file when it cannot be opened as a font.
+    // Throws std::runtime_error naming the font file when it is refused (check_font_file) or
+    // cannot be opened as a font.
     TextRaster(const std::string& font_file, int pixel_size);
     ~TextRaster();
     TextRaster(const TextRaster&) = delete;

@@ -18,7 +18,7 @@ struct Nop : Pass {
 
 void load_fixtures() {
     try {
-        runtime().host.load_file(std::string(PATHLET_FIXTURE_DIR) + "/bind_probe.so");
+        runtime().host.load_file(std::string(PATHLET_FIXTURE_DIR) + "/pathlet_bind_probe.so");
     } catch (const PluginError&) {
         // already loaded by an earlier test
     }

@@ -52,7 +52,7 @@ TEST(CameraPath, BadFilesNameTheFileAndPointer) {
         }
         return std::string();
     };
-    EXPECT_NE(err("{").find("cam.json: not valid JSON"), std::string::npos);
+    EXPECT_NE(err("{").find("cam.json:1:2: not valid JSON (camera path)"), std::string::npos) << err("{");
     EXPECT_NE(err(R"({"keyframes":[]})").find("cam.json:/keyframes"), std::string::npos);
     EXPECT_NE(err(R"({"keyframes":[{"time":0,"target":[0,0,0]}]})").find("/keyframes/0/eye: missing"),
               std::string::npos);

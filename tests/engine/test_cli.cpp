@@ -326,3 +326,48 @@ TEST(Cli, KilledMidRenderLeavesOnlyCompleteFiles) {
         EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "stale temp left: " << e.path();
     fs::remove_all(dir);
 }
+
+TEST(Cli, EveryCommandDeclaresItsOptionsOnce) {
+    // A command's options are declared when it runs: --help builds every declaration, so a
+    // name declared twice (say, a shared block and the command's own) fails here (exit 70).
+    CliRun overview = pathlet_cli("--help");
+    ASSERT_EQ(overview.code, 0);
+    std::istringstream in(overview.out.substr(overview.out.find("commands:\n") + 10));
+    size_t commands = 0;
+    for (std::string line; std::getline(in, line) && line.rfind("  ", 0) == 0;) {
+        const std::string cmd = line.substr(2, line.find(' ', 2) - 2);
+        CliRun r = pathlet_cli(cmd + " --help");
+        EXPECT_EQ(r.code, 0) << cmd << ": " << r.err;
+        EXPECT_EQ(r.out.rfind("usage: pathlet " + cmd, 0), 0u) << r.out;
+        ++commands;
+    }
+    EXPECT_GE(commands, 10u);
+}
+
+TEST(Cli, MalformedOptionValuesAreUsageErrorsNamingTheOption) {
+    const std::string data = " --data " + src("tests/engine/data/two_lines.vtk");
+    struct Case {
+        std::string args, want;
+    } cases[] = {
+        {"view --time x" + data, "--time expects a number, got 'x'"},  // was "error: stod"
+        {"render --warmup 2.5 --no-images" + data, "--warmup expects an integer, got '2.5'"},
+        {"render --orbit fast --no-images" + data, "--orbit expects a number, got 'fast'"},
+        {"render --timing fastest --no-images" + data, "--timing expects auto, gpu or finish, got 'fastest'"},
+        {"bench isl --frames many" + data, "--frames expects an integer, got 'many'"},
+        {"bench isl --threshold 0.1x --compare x.json" + data, "--threshold expects a number, got '0.1x'"},
+        {"trace f.vtk -o f.vtp --step 1/4", "--step expects a number, got '1/4'"},
+        {"phantom -o x.vtp --threads all", "--threads expects an integer, got 'all'"},
+        {"info f.vtk --time-step -1", "--time-step must be >= 0"},
+        {"graph isl --size 10", "--size '10': expected WIDTHxHEIGHT"},
+        {"quality --rays 1e3.5", "--rays expects an integer, got '1e3.5'"},
+        {"validate", "missing GRAPH"},
+        {"passes --plugin", "unknown option --plugin (did you mean --plugin-dir?)"},
+    };
+    for (const auto& c : cases) {
+        CliRun r = pathlet_cli(c.args);
+        EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.want), std::string::npos) << c.args << "\nwant: " << c.want << "\n" << r.err;
+        EXPECT_NE(r.err.find("--help"), std::string::npos) << "points at the help:\n" << r.err;
+        EXPECT_EQ(r.err.find("stod"), std::string::npos) << r.err;
+    }
+}

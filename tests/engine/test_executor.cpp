@@ -9,7 +9,7 @@ namespace {
 std::string render_error(const std::string& graph, std::vector<std::string> sets = {}) {
     Runtime& rt = runtime();
     try {
-        rt.host.load_file(std::string(PATHLET_FIXTURE_DIR) + "/good_pass.so");
+        rt.host.load_file(std::string(PATHLET_FIXTURE_DIR) + "/pathlet_good_pass.so");
     } catch (const PluginError&) {
         // already loaded by an earlier test
     }

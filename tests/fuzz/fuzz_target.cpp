@@ -1,8 +1,12 @@
-// One libFuzzer target per importer and per JSON file kind, chosen at compile time
+// One libFuzzer target per importer, per JSON file kind and for the plugin ELF check, chosen at compile time
 // (FUZZ_<KIND>; tests/fuzz/CMakeLists.txt builds one executable each). Every reader must
 // either load or throw its documented error type naming the file; anything else (a crash,
 // a sanitizer report, another exception, a giant allocation) is a finding.
+#include "bench/experiment.hpp"
 #include "graph/graph_model.hpp"
+#include "plugin_elf.hpp"
+#include "util/text.hpp"
+#include "view/view_script.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/native_cache.hpp"
 #include "io/pathline_formats.hpp"
@@ -58,6 +62,16 @@ void run(std::string_view bytes) {
     (void)g;
 #elif defined(FUZZ_CAMERA)
     CameraPath::parse(std::string(bytes), f);
+#elif defined(FUZZ_EXPERIMENT)
+    cli::bench::parse_experiment(text::parse_json_of(f, std::string(bytes), "experiment file"), f);
+#elif defined(FUZZ_VIEW_SCRIPT)
+    view::parse_script(std::string(bytes), f);
+#elif defined(FUZZ_ELF)
+    // The check before a plugin is opened: its ELF symbol table, read from bytes.
+    try {
+        read_plugin_symbols(bytes);
+    } catch (const ElfError&) {
+    }
 #else
 #error "define one FUZZ_<KIND>"
 #endif

@@ -7,6 +7,9 @@
 #include "io/tract_formats.hpp"
 #include <pathlet/scene.hpp>
 
+#include <elf.h>
+
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -15,6 +18,51 @@ using namespace pathlet;
 namespace fs = std::filesystem;
 
 namespace {
+// A minimal plugin as the host's ELF check reads it: header, .dynsym (the entry point and an SDK
+// stamp) and .dynstr, with section headers; nothing loadable. libFuzzer mutates from here.
+std::string tiny_plugin_elf() {
+    const std::string strs = std::string("\0pathlet_plugin_v1\0pathlet_sdk_0123456789abcdef\0", 49);
+    Elf64_Sym syms[3] = {};
+    syms[1].st_name = 1;
+    syms[1].st_info = ELF64_ST_INFO(STB_GLOBAL, STT_FUNC);
+    syms[1].st_shndx = 1;
+    syms[2].st_name = 19;
+    syms[2].st_info = ELF64_ST_INFO(STB_GLOBAL, STT_OBJECT);
+    syms[2].st_shndx = 1;
+    const size_t str_at = sizeof(Elf64_Ehdr), sym_at = 128, sh_at = sym_at + sizeof syms;
+    Elf64_Ehdr eh = {};
+    std::memcpy(eh.e_ident, ELFMAG, SELFMAG);
+    eh.e_ident[EI_CLASS] = ELFCLASS64;
+    eh.e_ident[EI_DATA] = ELFDATA2LSB;
+    eh.e_ident[EI_VERSION] = EV_CURRENT;
+    eh.e_type = ET_DYN;
+#if defined(__aarch64__)
+    eh.e_machine = EM_AARCH64;
+#else
+    eh.e_machine = EM_X86_64;
+#endif
+    eh.e_version = EV_CURRENT;
+    eh.e_ehsize = sizeof eh;
+    eh.e_shoff = sh_at;
+    eh.e_shentsize = sizeof(Elf64_Shdr);
+    eh.e_shnum = 3;
+    Elf64_Shdr sh[3] = {};
+    sh[1].sh_type = SHT_DYNSYM;
+    sh[1].sh_offset = sym_at;
+    sh[1].sh_size = sizeof syms;
+    sh[1].sh_entsize = sizeof(Elf64_Sym);
+    sh[1].sh_link = 2;
+    sh[2].sh_type = SHT_STRTAB;
+    sh[2].sh_offset = str_at;
+    sh[2].sh_size = strs.size();
+    std::string out(sh_at + sizeof sh, '\0');
+    std::memcpy(out.data(), &eh, sizeof eh);
+    std::memcpy(out.data() + str_at, strs.data(), strs.size());
+    std::memcpy(out.data() + sym_at, syms, sizeof syms);
+    std::memcpy(out.data() + sh_at, sh, sizeof sh);
+    return out;
+}
+
 void put(const fs::path& dir, const std::string& name, const std::string& bytes) {
     fs::create_directories(dir);
     std::ofstream(dir / name, std::ios::binary) << bytes;
@@ -104,6 +152,12 @@ int main(int argc, char** argv) {
     put(out / "camera", "path.json",
         R"({"keyframes": [{"time": 0, "eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 40},)"
         R"( {"time": 2, "eye": [5, 0, 0], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 30}]})");
+    for (const auto& e : fs::directory_iterator(src / "graphs" / "experiments"))
+        if (e.path().extension() == ".json") put(out / "experiment", e.path().filename().string(), slurp(e.path()));
+    put(out / "view_script", "events.json",
+        R"([{"frame": 0, "key": "space"}, {"frame": 1, "drag": [40, 0], "button": "left"}, {"frame": 2, "scroll": 2},)"
+        R"( {"frame": 3, "set": "window=2"}, {"frame": 4, "graph": "isl"}, {"frame": 5, "reload": true}])");
+    put(out / "elf", "tiny_plugin.so", tiny_plugin_elf());
     std::cout << "seeds written to " << out.string() << "\n";
     return 0;
 }

@@ -1,5 +1,6 @@
 #include "fake_registry.hpp"
 #include "io/limits.hpp"
+#include "util/text.hpp"
 
 #include <filesystem>
 
@@ -189,13 +190,13 @@ TEST(Parse, ReadsFilesAndNamesMissingOnes) {
 
 TEST(DidYouMean, ClosestWithinARelativeDistance) {
     const std::vector<std::string> c = {"radius", "samples", "mode", "tonemap", "bloom"};
-    EXPECT_EQ(closest_match("raduis", c), "radius");   // transposition counts once
-    EXPECT_EQ(closest_match("sampels", c), "samples");
-    EXPECT_EQ(closest_match("RADIUS", c), "radius");
-    EXPECT_EQ(closest_match("tonemp", c), "tonemap");
-    EXPECT_EQ(closest_match("blur", c), "");           // too far for a short word
-    EXPECT_EQ(closest_match("xyz", c), "");
-    EXPECT_EQ(closest_match("x", {}), "");
+    EXPECT_EQ(text::closest_match("raduis", c), "radius");   // transposition counts once
+    EXPECT_EQ(text::closest_match("sampels", c), "samples");
+    EXPECT_EQ(text::closest_match("RADIUS", c), "radius");
+    EXPECT_EQ(text::closest_match("tonemp", c), "tonemap");
+    EXPECT_EQ(text::closest_match("blur", c), "");           // too far for a short word
+    EXPECT_EQ(text::closest_match("xyz", c), "");
+    EXPECT_EQ(text::closest_match("x", {}), "");
 }
 
 TEST(Parse, DeepNestingIsRefusedBeforeItCanOverflowTheStack) {

@@ -12,11 +12,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #ifndef BUNDLE_W
 #define BUNDLE_W 320
 #define BUNDLE_H 240
 #endif
-#include <filesystem>
 
 using namespace pathlet;
 
@@ -331,6 +331,29 @@ TEST(Overlay, MissingFontIsAClearErrorNamingTheFile) {
         EXPECT_NE(m.find("/no/such/font.ttf"), std::string::npos) << m;
         EXPECT_NE(m.find("overlay"), std::string::npos) << m;
     }
+}
+
+// overlay.font comes from a graph: only a regular .ttf/.otf/.ttc file that starts like a font
+// is opened; anything else is refused with what is allowed, before FreeType sees it.
+TEST(Overlay, FontParameterOpensOnlyFontFiles) {
+    const std::filesystem::path dir = std::filesystem::path(PATHLET_TEST_BINARY_DIR) / "font_checks";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "folder.ttf");
+    std::filesystem::copy_file("/etc/passwd", dir / "passwd.ttf");
+    for (const auto& [font, why] : std::vector<std::pair<std::string, std::string>>{
+             {"/etc/passwd", "refused: not a font file name"},
+             {(dir / "passwd.ttf").string(), "refused: its content is not a TrueType/OpenType font"},
+             {(dir / "folder.ttf").string(), "refused: not a regular file"}}) {
+        try {
+            render_image(two_speed_lines_scene(), "variant1_lineao", {"overlay.font=" + font}, {64, 48});
+            ADD_FAILURE() << font << " was accepted";
+        } catch (const std::exception& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("font '" + font + "' " + why), std::string::npos) << m;
+            EXPECT_NE(m.find("allowed: regular TrueType/OpenType files named .ttf, .otf or .ttc"), std::string::npos) << m;
+        }
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Ssaa, BoxDownsampleWeighsColourByAlpha) {

@@ -156,7 +156,7 @@ def test_experiment_files_run_as_with_the_command(pathlet, root, scene, tmp_path
         assert (tmp_path / "out" / f).is_file(), f
     assert (tmp_path / "out" / res.runs[0]["meta"]["image"]).is_file()
     exp.write_text(json.dumps({"graphs": ["isl"], "sizez": ["64x36"]}))
-    with pytest.raises(RuntimeError, match=r"e.json: /sizez: unknown key 'sizez' \(did you mean 'sizes'\?\)"):
+    with pytest.raises(pathlet.DataError, match=r"e.json: /sizez: unknown key 'sizez' \(did you mean 'sizes'\?\)"):
         pathlet.run_experiment(exp)
 
 

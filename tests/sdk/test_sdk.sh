@@ -28,8 +28,24 @@ grep -q "plugin-dir" "$WORK/validate.err"
 # The line kit is installed: header, shaders, pass READMEs.
 test -f "$WORK/prefix/include/pathlet/lines.hpp"
 test -f "$WORK/prefix/share/pathlet/shaders/line_hooks.glsl"
-test -f "$WORK/prefix/lib/pathlet/passes/gbuffer/README.md"
+test -f "$WORK/prefix/lib/pathlet/passes/pathlet_gbuffer/README.md"
 ! grep -l "shared/" "$WORK"/prefix/lib/pathlet/passes/*/README.md
+test -f "$WORK/prefix/include/pathlet/sdk_fingerprint.hpp"
+
+# A plugin built against another SDK (its installed fingerprint differs) is refused from its
+# symbol table, before it is loaded: "rebuild against this SDK".
+cp -r "$WORK/prefix" "$WORK/old-prefix"
+sed -i 's/#define PATHLET_SDK_FINGERPRINT "[0-9a-f]*"/#define PATHLET_SDK_FINGERPRINT "00000000000000aa"/;
+        s/#define PATHLET_SDK_SYMBOL pathlet_sdk_[0-9a-f]*/#define PATHLET_SDK_SYMBOL pathlet_sdk_00000000000000aa/' \
+  "$WORK/old-prefix/include/pathlet/sdk_fingerprint.hpp"
+cmake -S "$SRC/plugins/example_vignette" -B "$WORK/old-plugin" -DCMAKE_PREFIX_PATH="$WORK/old-prefix" \
+      -DCMAKE_BUILD_TYPE=Release >"$WORK/old-configure.log"
+cmake --build "$WORK/old-plugin" >"$WORK/old-build.log"
+if "$PATHLET" passes --plugin-dir "$WORK/old-plugin" >"$WORK/old-passes.txt" 2>"$WORK/old-passes.err"; then
+  echo "a plugin of another SDK should be refused"; exit 1
+fi
+grep -q "rebuild against this SDK" "$WORK/old-passes.err"
+! grep -q "^vignette " "$WORK/old-passes.txt"
 
 # A fade strategy built out of tree against the kit, rendered through LineAO.
 cmake -S "$SRC/plugins/example_fade" -B "$WORK/fade" -DCMAKE_PREFIX_PATH="$WORK/prefix" \

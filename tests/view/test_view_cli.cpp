@@ -21,9 +21,9 @@ fs::path work() {
     fs::create_directories(d);
     return d;
 }
-int cli(const std::string& args, std::string* err = nullptr) {
+int cli(const std::string& args, std::string* err = nullptr, const std::string& env = "") {
     fs::path e = work() / "err.txt";
-    int status = std::system((std::string(PATHLET_CLI) + " " + args + " >/dev/null 2>" + e.string() + " </dev/null").c_str());
+    int status = std::system((env + " " + std::string(PATHLET_CLI) + " " + args + " >/dev/null 2>" + e.string() + " </dev/null").c_str());
     if (err) {
         std::ifstream in(e);
         std::stringstream ss;
@@ -163,4 +163,33 @@ TEST(ViewCli, BrokenGraphKeepsTheLastGoodImageAndReportsTheError) {
     EXPECT_LE(max_diff(read_image((d / "kept.png").string()), read_image((d / "good/demo_blur/00000.png").string())),
               1.0 / 255.0)
         << "the last good graph must keep running";
+}
+
+// Graph switching follows the trust rule (issue 23): a graph naming an untrusted plugin folder
+// is refused with the command that trusts it, the last good graph keeps running, and the
+// folder's plugin is never opened (its constructor would write the marker file).
+TEST(ViewCli, SwitchingToAGraphWithAnUntrustedPluginFolderLoadsNothing) {
+    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    test::Xvfb x;
+    ASSERT_TRUE(x.ok()) << "Xvfb did not start";
+    fs::path d = work();
+    fs::create_directories(d / "plugins");
+    fs::copy_file(std::string(PATHLET_FIXTURE_DIR) + "/pathlet_marker_pass.so", d / "plugins" / "pathlet_marker.so",
+                  fs::copy_options::overwrite_existing);
+    std::ofstream(d / "untrusted.json") << R"({"version": 1, "plugin_dirs": ["plugins"],
+      "passes": [{"name": "m", "type": "fixture_marker"}], "outputs": [{"resource": "m.color"}]})";
+    std::ofstream(d / "switch.json") << R"([{"frame": 1, "graph": ")" + (d / "untrusted.json").string() + R"("}])";
+    const fs::path marker = d / "constructor_ran.txt";
+    std::string err;
+    EXPECT_EQ(cli("view " + kScene + " --exit-after 3 --script " + (d / "switch.json").string() +
+                      " --screenshot " + (d / "kept.png").string(),
+                  &err, "PATHLET_FIXTURE_MARKER='" + marker.string() + "' XDG_CONFIG_HOME='" + (d / "config").string() + "'"),
+              1)
+        << err;
+    EXPECT_NE(err.find("is not trusted"), std::string::npos) << err;
+    EXPECT_NE(err.find("pathlet trust " + fs::canonical(d / "plugins").string()), std::string::npos) << err;
+    EXPECT_NE(err.find("last good graph"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(marker)) << "the untrusted plugin was loaded";
+    EXPECT_TRUE(fs::exists(d / "kept.png"));
+    fs::remove_all(d);
 }

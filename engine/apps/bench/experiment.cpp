@@ -2,12 +2,13 @@
 // the file, a JSON pointer to the bad value and a did-you-mean for misspelt keys.
 #include "experiment.hpp"
 
-#include "graph/graph_internal.hpp"
+#include "util/text.hpp"
+
+#include <pathlet/scene.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,13 +16,13 @@ namespace pathlet::cli::bench {
 namespace {
 
 using nlohmann::json;
-using graph_detail::did_you_mean;
-using graph_detail::pointer_escape;
+using text::did_you_mean;
+using text::pointer_escape;
 
 struct Ctx {
     std::string origin;
     [[noreturn]] void fail(const std::string& ptr, const std::string& msg) const {
-        throw std::runtime_error(origin + ": " + (ptr.empty() ? "/" : ptr) + ": " + msg);
+        throw DataError(origin + ": " + (ptr.empty() ? "/" : ptr) + ": " + msg);
     }
     void keys(const json& j, const std::string& ptr, const std::vector<std::string>& allowed) const {
         if (!j.is_object()) fail(ptr, "expected an object");
@@ -60,19 +61,21 @@ struct Ctx {
         }
         return out;
     }
-    int count(const json& j, const std::string& ptr, int min) const {
-        if (!j.is_number_integer() || j.get<long long>() < min)
-            fail(ptr, "expected an integer >= " + std::to_string(min));
+    int count(const json& j, const std::string& ptr, int min, int max) const {
+        if (!j.is_number_integer() || j.get<long long>() < min || j.get<long long>() > max)
+            fail(ptr, "expected an integer >= " + std::to_string(min) + " and <= " + std::to_string(max));
         return int(j.get<long long>());
     }
 };
 
+// WxH with whole numbers in 1..16384 (as --size).
 bool valid_size(const std::string& s) {
     size_t x = s.find('x');
-    if (x == std::string::npos || x == 0 || x + 1 >= s.size()) return false;
+    if (x == std::string::npos || x == 0 || x + 1 >= s.size() || x > 5 || s.size() - x - 1 > 5) return false;
     for (size_t i = 0; i < s.size(); ++i)
         if (i != x && !std::isdigit(static_cast<unsigned char>(s[i]))) return false;
-    return std::stoi(s.substr(0, x)) > 0 && std::stoi(s.substr(x + 1)) > 0;
+    const int w = std::stoi(s.substr(0, x)), h = std::stoi(s.substr(x + 1));  // at most 5 digits each
+    return w > 0 && h > 0 && w <= 16384 && h <= 16384;
 }
 
 }  // namespace
@@ -115,13 +118,15 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
         e.sizes.clear();
         for (size_t i = 0; i < s.size(); ++i) {
             std::string v = c.str(s[i], "/sizes/" + std::to_string(i));
-            if (!valid_size(v)) c.fail("/sizes/" + std::to_string(i), "expected WxH such as 1280x720, got '" + v + "'");
+            if (!valid_size(v))
+                c.fail("/sizes/" + std::to_string(i), "expected WxH such as 1280x720 (1..16384), got '" + v + "'");
             e.sizes.push_back(v);
         }
     }
     if (j.contains("time")) e.time = c.scalar(j["time"], "/time");
-    if (j.contains("frames")) e.frames = c.count(j["frames"], "/frames", 1);
-    if (j.contains("warmup")) e.warmup = c.count(j["warmup"], "/warmup", 0);
+    // Caps as for a graph's numbers: a typo of 1e9 frames is refused, not run for a week.
+    if (j.contains("frames")) e.frames = c.count(j["frames"], "/frames", 1, 100000);
+    if (j.contains("warmup")) e.warmup = c.count(j["warmup"], "/warmup", 0, 100000);
     if (j.contains("set")) e.sets = c.sets(j["set"], "/set");
     if (j.contains("camera")) {
         e.camera = c.str(j["camera"], "/camera");
@@ -175,15 +180,7 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
 }
 
 Experiment load_experiment(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open the experiment file");
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& err) {
-        throw std::runtime_error(path + ": not valid JSON: " + err.what());
-    }
-    return parse_experiment(j, path);
+    return parse_experiment(text::read_json_file(path, "experiment file"), path);
 }
 
 std::vector<Run> plan_runs(const Experiment& e) {

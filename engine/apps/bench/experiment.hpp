@@ -48,7 +48,8 @@ struct Run {
     std::string label;  // graph label, sweep value, data set (filled by plan_runs)
 };
 
-// Throws std::runtime_error "FILE: /json/pointer: message (did you mean 'x'?)".
+// Throws DataError "FILE: /json/pointer: message (did you mean 'x'?)"; the file is read with
+// the limits of graph files (util/text.hpp: size, nesting, numbers).
 Experiment load_experiment(const std::string& path);
 Experiment parse_experiment(const nlohmann::json& j, const std::string& origin);
 // Every run in a fixed order (data set, graph, sweep value, size); shards pick runs by index.

@@ -2,33 +2,23 @@
 
 #include "svg_plot.hpp"
 #include "util/atomic_file.hpp"
-
-#include <unistd.h>
+#include "util/text.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
-#include <sstream>
-#include <thread>
 
 namespace pathlet::cli::bench {
 namespace {
 
 using nlohmann::json;
+using text::csv_field;
 
 std::string fmt(double v) {
     char b[32];
     std::snprintf(b, sizeof b, "%.4f", v);
     return b;
-}
-
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string o = "\"";
-    for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return o + "\"";
 }
 
 std::string meta_cols(const json& m) {
@@ -37,24 +27,6 @@ std::string meta_cols(const json& m) {
 }
 
 }  // namespace
-
-json run_entry(const Profiler& p, const json& meta) {
-    json e = p.to_json(meta);
-    json frames = json::array();
-    const auto& names = p.pass_names();
-    for (const auto& f : p.frames()) {
-        json passes = json::object();
-        for (const auto& s : f.passes)
-            if (s.gpu.valid) passes[names[size_t(s.pass)]] = s.gpu.duration();
-        frames.push_back({{"frame", f.index},
-                          {"warmup", f.warmup},
-                          {"gpu_ms", f.gpu.valid ? json(f.gpu.duration()) : json()},
-                          {"cpu_ms", f.cpu.valid ? json(f.cpu.duration()) : json()},
-                          {"passes", passes}});
-    }
-    e["frames"] = frames;
-    return e;
-}
 
 std::string summary_csv(const json& report) {
     std::string out = "label,graph,size,sweep_value,pass,depth,n,median_ms,p5_ms,p95_ms,share_pct\n";
@@ -146,33 +118,6 @@ std::vector<std::string> write_report_dir(const std::string& dir, const json& re
         files.push_back("sweep.svg");
     }
     return files;
-}
-
-json machine_info() {
-    char host[256] = {0};
-    gethostname(host, sizeof host - 1);
-    std::string cpu;
-    std::ifstream in("/proc/cpuinfo");
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("model name", 0) == 0) {
-            cpu = line.substr(line.find(':') + 2);
-            break;
-        }
-    return {{"host", host}, {"cpu", cpu}, {"cores", std::thread::hardware_concurrency()}};
-}
-
-std::string file_hash(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return "";
-    uint64_t h = 1469598103934665603ull;
-    char c;
-    while (in.get(c)) {
-        h ^= uint8_t(c);
-        h *= 1099511628211ull;
-    }
-    char b[17];
-    std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
-    return b;
 }
 
 }  // namespace pathlet::cli::bench

@@ -1,6 +1,6 @@
 #include "run_experiment.hpp"
 
-#include "report.hpp"
+#include "results.hpp"
 
 #include "cli/scene_args.hpp"
 
@@ -30,7 +30,7 @@ json graph_info(const Experiment& e, const std::string& origin) {
         if (!fs::is_regular_file(path))
             throw std::runtime_error((origin.empty() ? "" : origin + ": /graphs/" + std::to_string(gi) + ": ") +
                                      "no graph file or shipped graph named '" + e.graphs[gi].graph + "'");
-        info[e.graphs[gi].label] = {{"graph", e.graphs[gi].graph}, {"path", path}, {"fnv1a64", file_hash(path)}};
+        info[e.graphs[gi].label] = graph_entry(e.graphs[gi].graph, path);
     }
     return info;
 }
@@ -51,26 +51,12 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
     for (size_t k = 0; k < runs.size(); ++k) mine += s.shard.owns(k);
     rt.ensure_gl(true);
 
-    json report = {{"experiment", e.name},
-                   {"description", e.description},
-                   {"command", s.command},
-                   {"machine", machine_info()},
-                   {"gl_renderer", rt.gl->renderer()},
-                   {"graphs", s.graphs},
-                   {"sizes", e.sizes},
-                   {"time", e.time},
-                   {"frames", e.frames},
-                   {"warmup", e.warmup},
-                   {"sweep_param", e.sweep.param},
-                   {"planned_runs", runs.size()},
-                   {"complete", mine == 0},
-                   {"runs", json::array()}};
-    if (s.shard.active()) report["shard"] = {{"index", s.shard.index}, {"count", s.shard.count}};
-    if (hooks.on_report) hooks.on_report(report, nullptr);  // a shard with no runs still leaves its results
+    Results results(e, s.command, rt.gl->renderer(), s.graphs, runs.size(), s.shard);
+    results.set_complete(mine == 0);
+    if (hooks.on_report) hooks.on_report(results.doc(), nullptr);  // a shard with no runs still leaves its results
 
     std::optional<Scene> scene;
     size_t scene_of = size_t(-1), done = 0;
-    json data_info = json::array();
     for (size_t k = 0; k < runs.size(); ++k) {
         if (!s.shard.owns(k)) continue;
         if (hooks.stop && hooks.stop()) break;
@@ -79,17 +65,13 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
             scene.reset();
             scene = hooks.load_data(run.data);
             scene_of = run.data;
-            data_info.push_back({{"source", scene->source},
-                                 {"lines", scene->lines.line_count()},
-                                 {"points", scene->lines.point_count()},
-                                 {"mesh_triangles", scene->mesh ? scene->mesh->index.size() / 3 : 0}});
+            results.add_data(*scene);
             for (double t : base.time.times())  // an empty picture times nothing worth knowing
                 if (t < scene->lines.time_min() || t > scene->lines.time_max()) {
                     std::fprintf(stderr, "warning: time %g s is outside %s's %g..%g s: few or no lines are drawn\n", t,
                                  scene->source.c_str(), scene->lines.time_min(), scene->lines.time_max());
                     break;
                 }
-            report["data"] = data_info;
         }
         const auto& g = e.graphs[run.graph];
         RenderOptions opt = base;
@@ -102,7 +84,7 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
         std::string image;
         if (!s.image_dir.empty()) {  // what the time bought: one frame, at the first time, written
             RenderOptions io = opt;
-            io.time = parse_time_range(std::to_string(base.time.times().front()));
+            io.time = TimeRange{base.time.times().front(), base.time.times().front()};
             io.repeat = 1;
             io.warmup = 0;
             io.write_images = true;
@@ -111,18 +93,12 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
             for (const auto& f : ir.files)
                 if (image.empty() && fs::path(f).extension() == ".png") image = fs::relative(f, s.image_dir).generic_string();
         }
-        json meta = {{"index", k},           {"label", run.label},    {"graph_label", g.label},
-                     {"graph", g.graph},     {"graph_path", opt.graph_path}, {"size", run.size},
-                     {"sweep_value", run.sweep_value}, {"sets", opt.sets}, {"data", scene->source},
-                     {"renderer", rt.gl->renderer()}};
-        if (!image.empty()) meta["image"] = image;
-        report["timing_backend"] = r.profiler.backend_description();
-        report["runs"].push_back(run_entry(r.profiler, meta));
-        report["complete"] = ++done == mine;
+        results.add_run(k, run, g, opt.graph_path, opt.sets, scene->source, r.profiler, image);
+        results.set_complete(++done == mine);
         const RunDone finished{run, r.profiler, *scene, done, mine};
-        if (hooks.on_report) hooks.on_report(report, &finished);
+        if (hooks.on_report) hooks.on_report(results.doc(), &finished);
     }
-    return report;
+    return results.doc();
 }
 
 }  // namespace pathlet::cli::bench

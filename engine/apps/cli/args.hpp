@@ -1,62 +1,133 @@
-// Tiny command-line parser shared by the subcommands: options are declared once
-// (name, value name, default, help) and that declaration drives parsing and --help.
+// The command-line parser shared by the subcommands. Each option is declared once, bound to a
+// typed variable (name, value name, help; the variable's initial value is the default), and
+// that declaration drives parsing, conversion and --help. A command reads its variables, never
+// option names, so an option it did not declare cannot be asked for.
+//
+// Errors: a bad command line (unknown option, missing or malformed value, a value out of its
+// range) throws UsageError, which main() prints with the command's name and exits 2. A bad
+// declaration (an option declared twice, a short name used twice) throws DeclarationError: a
+// programming error (exit 70), caught by the test that runs every command's --help.
 #pragma once
 
-#include <map>
-#include <stdexcept>
+#include <glm/vec2.hpp>
+
+#include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+namespace pathlet {
+struct TimeRange;
+enum class TimingBackend;
+}  // namespace pathlet
+
 namespace pathlet::cli {
+
+struct Shard;
 
 // Thrown for bad command lines; main() prints it with the subcommand's usage and exits 2.
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// A bug in a command's option declarations, never the user's fault.
+struct DeclarationError : std::logic_error {
+    using std::logic_error::logic_error;
+};
+
+// A value with a default that also knows whether the command line gave it (bench: a --size on
+// the command line overrides the experiment's sizes, the default does not).
+template <class T>
+struct Given {
+    T value{};
+    bool given = false;
+};
+
+// Text -> value, for the types options are bound to. Each throws std::invalid_argument with
+// what was expected; a message that starts with "--" is used as it is.
+void convert(const std::string& text, std::string& out);
+void convert(const std::string& text, double& out);
+void convert(const std::string& text, float& out);
+void convert(const std::string& text, int& out);
+void convert(const std::string& text, long& out);
+void convert(const std::string& text, glm::ivec2& out);  // WxH, as --size (1..16384)
+void convert(const std::string& text, TimeRange& out);   // T, A:B or A:B:STEP, as --time
+void convert(const std::string& text, TimingBackend& out);  // auto, gpu, finish
+void convert(const std::string& text, Shard& out);       // I/N
+template <class T>
+void convert(const std::string& text, std::optional<T>& out) {
+    T v{};
+    convert(text, v);
+    out = v;
+}
+template <class T>
+void convert(const std::string& text, Given<T>& out) {
+    convert(text, out.value);
+    out.given = true;
+}
+// The default as --help shows it ("" for none).
+std::string shown(const std::string& v);
+std::string shown(double v);
+std::string shown(float v);
+std::string shown(int v);
+std::string shown(long v);
+std::string shown(const glm::ivec2& v);
+std::string shown(const TimeRange& v);
+std::string shown(TimingBackend v);
+std::string shown(const Shard& v);
+template <class T>
+std::string shown(const std::optional<T>& v) { return v ? shown(*v) : std::string(); }
+template <class T>
+std::string shown(const Given<T>& v) { return shown(v.value); }
+
 class Args {
 public:
     Args(std::string command, std::string summary) : command_(std::move(command)), summary_(std::move(summary)) {}
 
-    // A flag without a value (--orbit-off), or an option with one (--size WxH).
-    Args& flag(const std::string& name, const std::string& help);
-    Args& option(const std::string& name, const std::string& value_name, const std::string& def, const std::string& help);
-    // Repeatable option (--set a=b --set c=d).
-    Args& multi(const std::string& name, const std::string& value_name, const std::string& help);
-    Args& positional(const std::string& name, const std::string& help, bool required = true);
-    Args& example(const std::string& line, const std::string& what);
+    // An option with a value (--size WxH), converted into `out` when given.
+    template <class T>
+    Args& option(const std::string& name, T& out, const std::string& value_name, const std::string& help) {
+        return add({name, value_name, help, shown(out), Kind::Value,
+                    [&out](const std::string& v) { convert(v, out); }});
+    }
+    // A flag without a value (--quiet): sets `out` to true.
+    Args& flag(const std::string& name, bool& out, const std::string& help);
+    // A repeatable option (--set a=b --set c=d): every value, in order.
+    Args& multi(const std::string& name, std::vector<std::string>& out, const std::string& value_name,
+                const std::string& help);
     // A one-letter alias for the option declared last: .option("output", ...).short_name('o')
     Args& short_name(char c);
+    // Positional arguments, in order. `rest` takes every remaining one (at least one).
+    Args& positional(const std::string& name, std::string& out, const std::string& help, bool required = true);
+    Args& rest(const std::string& name, std::vector<std::string>& out, const std::string& help);
+    Args& example(const std::string& line, const std::string& what);
 
     // Returns false when --help was asked for (help already printed to stdout).
     bool parse(const std::vector<std::string>& argv);
-
-    bool has(const std::string& name) const;          // flag given, or option given explicitly
-    std::string get(const std::string& name) const;   // value or default
-    double number(const std::string& name) const;     // parses, UsageError naming the option
-    long integer(const std::string& name) const;
-    std::vector<std::string> all(const std::string& name) const;
-    std::string pos(const std::string& name) const;   // "" if an optional positional is absent
     std::string help() const;
 
 private:
+    enum class Kind { Value, Flag, Multi };
     struct Opt {
-        std::string name, value_name, def, help;
-        bool is_flag = false, is_multi = false;
+        std::string name, value_name, help, def;
+        Kind kind = Kind::Value;
+        std::function<void(const std::string&)> set;
         char short_name = 0;
     };
     struct Pos {
         std::string name, help;
-        bool required;
+        bool required = true, rest = false;
+        std::function<void(const std::string&)> set;
     };
+    Args& add(Opt o);
+    const Opt* find(const std::string& name) const;
+    void assign(const Opt& o, const std::string& value) const;
+
     std::string command_, summary_;
     std::vector<Opt> opts_;
     std::vector<Pos> pos_;
     std::vector<std::pair<std::string, std::string>> examples_;
-    std::map<std::string, std::vector<std::string>> values_;
-    std::map<std::string, std::string> positionals_;
-    const Opt* find(const std::string& name) const;
 };
 
 }  // namespace pathlet::cli

@@ -1,9 +1,10 @@
 // pathlet passes [--describe TYPE]: what pass types the plugin search path provides.
-#include "args.hpp"
 #include "commands.hpp"
+#include "common_options.hpp"
 #include "graph/graph_model.hpp"
 #include "graph/hook_params.hpp"
 #include "runtime.hpp"
+#include "util/text.hpp"
 
 #include <cstdio>
 
@@ -21,36 +22,56 @@ std::shared_ptr<const PassTypeInfo> with_default_hooks(const PassTypeInfo& t) {
 }
 
 int run(const std::vector<std::string>& argv) {
-    Args a("passes", "Lists the pass types found on the plugin search path, with the file each comes from.");
-    a.option("describe", "TYPE", "", "print the parameters and pins of one pass type")
-        .multi("plugin-dir", "DIR", "also load plugins from DIR (before PATHLET_PLUGIN_PATH and the built-in folder)")
-        .flag("json", "print the declarations as JSON (for tools and docs)")
-        .flag("markdown", "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed them; "
-                          "alone: the index of every pass type, as passes/README.md embeds it "
-                          "(scripts/update-pass-docs.sh)")
+    Args a("passes",
+           "Lists the pass types found on the plugin search path, with the file each comes from.\n"
+           "\n"
+           "Where plugins come from, and which are trusted (loading a plugin runs its code):\n"
+           "  - the search path: --plugin-dir folders, PATHLET_PLUGIN_PATH, the built-in folder. You chose\n"
+           "    these, so they are trusted.\n"
+           "  - \"plugin_dirs\" in a graph file: loaded only when trusted ('pathlet trust DIR' lists it in\n"
+           "    ~/.config/pathlet/trusted-plugin-dirs, honouring XDG_CONFIG_HOME) or for one run with\n"
+           "    --trust-graph-plugins. Otherwise render, bench, view and graph stop before loading\n"
+           "    anything and print the command that trusts the folder; validate reports the pass types\n"
+           "    the folder may provide without opening it.\n"
+           "Before any file is opened: it must be named pathlet_<name>.so (as pathlet_add_pass() builds it;\n"
+           "other files are skipped with a note), neither it nor its folder may be world-writable or\n"
+           "another user's (root's is fine), and its ELF symbol table, read without loading it, must hold\n"
+           "the pathlet_plugin_v1 entry point and this SDK's fingerprint (else: rebuild against this SDK).\n"
+           "\n"
+           "A line pass's parameters include those its hook files declare (color_hook, width_hook):\n"
+           "--describe shows them for the default hooks.");
+    std::string describe;
+    bool as_json = false, markdown = false;
+    PluginOptions plugins;
+    a.option("describe", describe, "TYPE", "print the parameters and pins of one pass type");
+    plugins.declare(a, /*graph_files=*/false);
+    a.flag("json", as_json, "print the declarations as JSON (for tools and docs)")
+        .flag("markdown", markdown, "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed "
+                                    "them; alone: the index of every pass type, as passes/README.md embeds it "
+                                    "(scripts/update-pass-docs.sh)")
         .example("pathlet passes", "list all pass types")
         .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
     if (!a.parse(argv)) return 0;
     Runtime rt;
-    rt.load_plugins(a.all("plugin-dir"));
-    if (a.has("describe")) {
-        const PassTypeInfo* t = rt.registry.find(a.get("describe"));
+    plugins.load(rt);
+    if (!describe.empty()) {
+        const PassTypeInfo* t = rt.registry.find(describe);
         if (!t) {
-            std::string hint = closest_match(a.get("describe"), rt.registry.names());
-            std::fprintf(stderr, "pathlet passes: no pass type '%s'%s%s\n", a.get("describe").c_str(),
+            std::string hint = text::closest_match(describe, rt.registry.names());
+            std::fprintf(stderr, "pathlet passes: no pass type '%s'%s%s\n", describe.c_str(),
                          hint.empty() ? "" : ("; did you mean '" + hint + "'?").c_str(),
                          rt.plugin_problems_note().c_str());
             return 1;
         }
         const auto inst = with_default_hooks(*t);
-        std::fputs((a.has("markdown") ? inst->markdown() : inst->describe()).c_str(), stdout);
+        std::fputs((markdown ? inst->markdown() : inst->describe()).c_str(), stdout);
         return 0;
     }
-    if (a.has("markdown")) {
+    if (markdown) {
         std::fputs(index_markdown(rt.registry.all()).c_str(), stdout);
         return rt.host.problems().empty() ? 0 : 1;
     }
-    if (a.has("json")) {
+    if (as_json) {
         json out = json::array();
         for (const auto* reg_type : rt.registry.all()) {
             const auto inst = with_default_hooks(*reg_type);
@@ -74,8 +95,9 @@ int run(const std::vector<std::string>& argv) {
     }
     if (rt.registry.all().empty()) {
         std::printf("(no pass types found) searched:\n");
-        for (const auto& d : PluginHost::search_path(a.all("plugin-dir"))) std::printf("  %s\n", d.c_str());
+        for (const auto& d : PluginHost::search_path(plugins.dirs)) std::printf("  %s\n", d.c_str());
     }
+    for (const auto& n : rt.host.notes()) std::fprintf(stderr, "note: %s\n", n.c_str());
     for (const auto& p : rt.host.problems()) std::fprintf(stderr, "error: %s\n", p.c_str());
     return rt.host.problems().empty() ? 0 : 1;
 }

@@ -2,11 +2,11 @@
 // temporal flicker against the change of the geometry, and the error of the screen-space AO
 // against a ray-traced AO of the same frame (Embree, tube geometry of the visible pathlets).
 // The measuring is quality/measure.cpp (shared with the Python module); this is the command.
-#include "args.hpp"
 #include "commands.hpp"
+#include "common_options.hpp"
+#include "executor.hpp"
 #include "image_io.hpp"
 #include "renderer.hpp"
-#include "scene_args.hpp"
 
 #include "measure.hpp"
 
@@ -21,39 +21,32 @@ int run(const std::vector<std::string>& argv) {
            "change of AO where the same line is seen at the same depth) against the change of the geometry,\n"
            "and the error (MAE, correlation) of the screen-space AO against a CPU ray-traced AO (Embree,\n"
            "tubes of the visible pathlets, cosine-weighted rays) of the last frame, with an error image.");
-    a.positional("GRAPH", "graph file or shipped graph name (default: variant1_lineao)", false)
-        .option("time", "A:B:STEP", "9:9.4:0.04", "animation times (frames at A, A+STEP, ... <= B)")
-        .option("size", "WxH", "320x180", "output size in pixels")
-        .option("rays", "N", "256", "ray-traced AO: rays per pixel")
-        .option("max-distance", "WIDTHS", "10", "ray-traced AO: ray length in line widths")
-        .option("depth-tolerance", "D", "0.002", "flicker: largest change of linear depth that counts as unchanged")
-        .option("out", "DIR", "out/quality", "folder for the per-pixel error image")
-        .multi("set", "NAME=VALUE", "override a graph variable or a pass parameter");
-    add_scene_options(a);
-    if (!a.parse(argv)) return 0;
-    RenderOptions opt;
-    try {
-        opt.graph_path = resolve_graph_path(a.pos("GRAPH").empty() ? "variant1_lineao" : a.pos("GRAPH"));
-        opt.size = parse_size(a.get("size"));
-        opt.time = parse_time_range(a.get("time"));
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
+    std::string graph = "variant1_lineao";
+    PluginOptions plugins;
+    SceneOptions data;
     quality::QualityOptions q;
-    q.graph_path = opt.graph_path;
-    q.size = opt.size;
-    q.time = opt.time;
-    q.rays = int(a.integer("rays"));
+    q.time = parse_time_range("9:9.4:0.04");
+    q.size = {320, 180};
+    q.work_dir = "out/quality";
+    a.positional("GRAPH", graph, "graph file or shipped graph name (default: variant1_lineao)", false)
+        .option("time", q.time, "A:B:STEP", "animation times (frames at A, A+STEP, ... <= B)");
+    declare_size(a, q.size, "output size in pixels");
+    a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
+        .option("max-distance", q.max_distance, "WIDTHS", "ray-traced AO: ray length in line widths")
+        .option("depth-tolerance", q.depth_tolerance, "D",
+                "flicker: largest change of linear depth that counts as unchanged")
+        .option("out", q.work_dir, "DIR", "folder for the per-pixel error image");
+    declare_sets(a, q.sets);
+    plugins.declare(a);
+    data.declare(a);
+    if (!a.parse(argv)) return 0;
+    q.graph_path = resolve_graph_path(graph);
     if (q.rays < 1) throw UsageError("--rays must be >= 1");
-    q.max_distance = float(a.number("max-distance"));
-    q.depth_tolerance = float(a.number("depth-tolerance"));
-    q.sets = a.all("set");
-    q.work_dir = a.get("out");
     if (q.time.times().size() < 2) throw UsageError("--time must give at least two frames");
 
     Runtime rt;
-    rt.load_plugins({});
-    Scene scene = load_scene(a, true);
+    plugins.load(rt);
+    Scene scene = data.load(true);
     const quality::QualityResult r = quality::measure_quality(rt, scene, q);
     if (!r.not_measured.empty()) {
         std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());

@@ -1,7 +1,8 @@
 // pathlet validate FILE...: every problem in each graph at once, with file and JSON pointer.
-#include "args.hpp"
 #include "commands.hpp"
+#include "common_options.hpp"
 #include "graph/graph_model.hpp"
+#include "plugin_trust.hpp"
 #include "runtime.hpp"
 
 #include <cstdio>
@@ -11,33 +12,28 @@ namespace {
 
 int run(const std::vector<std::string>& argv) {
     Args a("validate", "Checks graph files without rendering: syntax, pass types, parameters, pins, formats,\n"
-                       "cycles, writers. Every error is reported at once as FILE:/json/pointer: message.");
-    a.positional("GRAPH", "graph file(s) to check; more may follow", true)
-        .multi("set", "NAME=VALUE", "override a variable or a pass parameter (pass.param=value) before checking")
-        .multi("plugin-dir", "DIR", "also load plugins from DIR")
-        .example("pathlet validate graphs/*.json", "check every shipped graph");
-    // Several files: take the first as the positional, the rest as extra arguments.
-    std::vector<std::string> files, rest;
-    for (size_t i = 0; i < argv.size(); ++i) {
-        const auto& s = argv[i];
-        if (s.rfind("--", 0) == 0) {
-            rest.push_back(s);
-            if ((s == "--set" || s == "--plugin-dir") && i + 1 < argv.size()) rest.push_back(argv[++i]);
-        } else {
-            files.push_back(s);
-        }
-    }
-    if (!files.empty()) rest.push_back(files.front());
-    if (!a.parse(rest)) return 0;
+                       "cycles, writers. Every error is reported at once as FILE:/json/pointer: message.\n"
+                       "A graph's plugin folders are loaded only when trusted (see 'pathlet trust --help'); an\n"
+                       "untrusted one is never opened, and pass types it may provide are reported as such.");
+    std::vector<std::string> files, sets;
+    PluginOptions plugins;
+    a.rest("GRAPH", files, "graph file(s) to check");
+    declare_sets(a, sets);
+    plugins.declare(a);
+    a.example("pathlet validate graphs/*.json", "check every shipped graph");
+    if (!a.parse(argv)) return 0;
     Runtime rt;
-    rt.load_plugins(a.all("plugin-dir"));
+    plugins.load(rt);
     int bad = 0;
     for (const auto& f : files) {
         std::vector<Diagnostic> diags;
         try {
             GraphFile g = parse_graph_file(f);
-            rt.load_graph_plugins(g);
-            apply_overrides(g, a.all("set"), rt.registry, diags);
+            rt.load_trusted_graph_plugins(g);  // an untrusted folder is never opened, only named
+            for (const auto& u : g.untrusted_plugin_dirs)
+                std::fprintf(stderr, "note: %s: plugin folder %s is not trusted; its plugins were not loaded (%s)\n",
+                             f.c_str(), u.dir.c_str(), trust_command(u.dir).c_str());
+            apply_overrides(g, sets, rt.registry, diags);
             auto more = validate_graph(g, rt.registry);
             diags.insert(diags.end(), more.begin(), more.end());
         } catch (const GraphError& e) {

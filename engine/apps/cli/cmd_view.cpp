@@ -4,14 +4,17 @@
 // ViewSession (parameter changes, graph switches, hot reload with the last good graph kept),
 // the panels are Dear ImGui generated from the pass declarations (view/view_panels.hpp), the
 // camera and clock are view/orbit_view.hpp, and the graph and shader files are polled for
-// changes (view/file_watch.hpp).
-#include "args.hpp"
+// changes (view/file_watch.hpp). Each shown frame is three steps of ViewLoop: input (window
+// and script events into the clock, camera and actions), frame (panels, hot reload, the
+// actions, then the graph) and present (the output and panels on the window, screenshots).
 #include "commands.hpp"
+#include "common_options.hpp"
 #include "executor.hpp"
 #include "image_io.hpp"
-#include "renderer.hpp"
-#include "scene_args.hpp"
 #include "plugin_host.hpp"
+#include "renderer.hpp"
+#include "util/atomic_file.hpp"
+#include "util/text.hpp"
 #include "view/file_watch.hpp"
 #include "view/orbit_view.hpp"
 #include "view/view_panels.hpp"
@@ -23,35 +26,95 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <deque>
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+#include <optional>
 
 namespace pathlet::cli {
 namespace {
 
-struct GlfwWindow {
-    GLFWwindow* w = nullptr;
-    ~GlfwWindow() {
-        if (w) glfwDestroyWindow(w);
-        glfwTerminate();
+struct ViewOptions {
+    std::string graph = "variant1_lineao", camera, screenshot, screenshot_window, screenshot_dir = ".", script;
+    std::optional<double> time;
+    glm::ivec2 size{1280, 720};
+    std::vector<std::string> sets;
+    long exit_after = 0;
+    bool no_ui = false;
+    PluginOptions plugins;
+    SceneOptions data;
+
+    void declare(Args& a) {
+        a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
+            .option("time", time, "T", "start paused at this animation time in seconds (default: play from the start)");
+        declare_size(a, size, "window and output size in pixels");
+        declare_sets(a, sets);
+        declare_camera(a, camera);
+        a.option("exit-after", exit_after, "N", "quit after N shown frames (0: run until closed)")
+            .option("screenshot", screenshot, "FILE", "on exit, write the graph output of the last frame (PNG/EXR)")
+            .option("screenshot-window", screenshot_window, "FILE", "on exit, write the whole window (graph output and panels) as PNG")
+            .option("screenshot-dir", screenshot_dir, "DIR",
+                    "where the s key writes pathlet_view_<frame>.png (and 'copy as --set' its camera)")
+            .option("script", script, "FILE", "scripted input (JSON events per frame, fixed 1/25 s clock; see view/view_script.hpp)")
+            .flag("no-ui", no_ui, "no panels (tab shows them)");
+        plugins.declare(a);
+        data.declare(a);
     }
 };
 
-// Closes ImGui before the window goes (declared after GlfwWindow, so destroyed before it).
-struct ImGuiGuard {
-    bool on = false;
-    ~ImGuiGuard() {
-        if (!on) return;
-        ImGui_ImplOpenGL3_Shutdown();
-        ImGui_ImplGlfw_Shutdown();
-        ImGui::DestroyContext();
+// The window and Dear ImGui, closed in reverse order of opening.
+class Window {
+public:
+    ~Window() {
+        if (imgui_) {
+            ImGui_ImplOpenGL3_Shutdown();
+            ImGui_ImplGlfw_Shutdown();
+            ImGui::DestroyContext();
+        }
+        if (w_) glfwDestroyWindow(w_);
+        if (glfw_) glfwTerminate();
     }
+    // The GL context is current afterwards. `user` receives the input callbacks' events.
+    void open(glm::ivec2 size, bool vsync, void* user, void (*install_callbacks)(GLFWwindow*));
+    // Dear ImGui over the window (after the engine adopted its context).
+    void open_ui();
+    GLFWwindow* get() const { return w_; }
+
+private:
+    GLFWwindow* w_ = nullptr;
+    bool glfw_ = false, imgui_ = false;
 };
+
+void Window::open(glm::ivec2 size, bool vsync, void* user, void (*install_callbacks)(GLFWwindow*)) {
+    glfw_ = glfwInit();
+    if (!glfw_)
+        throw std::runtime_error("view: cannot open a window: no display (DISPLAY is '" +
+                                 std::string(std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "") +
+                                 "'). Run it on a desktop, or under Xvfb: xvfb-run pathlet view ...");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    w_ = glfwCreateWindow(size.x, size.y, "pathlet view", nullptr, nullptr);
+    if (!w_) throw std::runtime_error("view: the display offers no OpenGL 4.5 core window");
+    glfwMakeContextCurrent(w_);
+    glfwSwapInterval(vsync ? 1 : 0);
+    glfwSetWindowUserPointer(w_, user);
+    install_callbacks(w_);  // before ImGui's, which chain to these
+}
+
+void Window::open_ui() {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
+    ImGui_ImplGlfw_InitForOpenGL(w_, true);
+    ImGui_ImplOpenGL3_Init("#version 450");
+    imgui_ = true;
+}
 
 bool ui_wants_mouse() { return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse; }
 bool ui_wants_keys() { return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard; }
@@ -72,25 +135,18 @@ void write_camera(const std::string& path, const Camera& c) {
                         {"target", {c.target.x, c.target.y, c.target.z}},
                         {"up", {c.up.x, c.up.y, c.up.z}},
                         {"fov", c.fov_y_deg}};
-    const std::string tmp = path + ".tmp";
-    std::ofstream(tmp) << nlohmann::json{{"keyframes", {k}}}.dump(2) << "\n";
-    std::filesystem::rename(tmp, path);
-}
-
-std::string shell_quote(const std::string& s) {
-    if (s.find_first_of(" '\"$#*?;&|<>()[]{}\\") == std::string::npos) return s;
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
+    write_file_atomic(path, nlohmann::json{{"keyframes", {k}}}.dump(2) + "\n");
 }
 
 // The render command that reproduces what the window shows (graph, overrides, time, camera).
 std::string render_command(const view::ViewSession& session, double t, glm::ivec2 size, const std::string& camera_file) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, " --time %.3f --size %dx%d", t, size.x, size.y);
-    std::string cmd = "pathlet render " + shell_quote(session.graph_path()) + buf + " --camera " + shell_quote(camera_file);
-    for (const auto& s : session.sets()) cmd += " --set " + shell_quote(s);
-    return cmd;
+    char time[32];
+    std::snprintf(time, sizeof time, "%.3f", t);
+    std::vector<std::string> words = {"pathlet", "render", session.graph_path(), "--time", time,
+                                      "--size", std::to_string(size.x) + "x" + std::to_string(size.y),
+                                      "--camera", camera_file};
+    for (const auto& s : session.sets()) words.insert(words.end(), {"--set", s});
+    return text::shell_command(words);
 }
 
 std::vector<std::string> shipped_graphs() {
@@ -157,6 +213,241 @@ void install_callbacks(GLFWwindow* w) {
     });
 }
 
+// The graph output on the window's framebuffer. Its read framebuffer is made once and kept;
+// each frame attaches the output texture (a rebuilt graph may bring another texture).
+class OutputBlit {
+public:
+    OutputBlit() { glCreateFramebuffers(1, &fbo_); }
+    ~OutputBlit() { glDeleteFramebuffers(1, &fbo_); }
+    OutputBlit(const OutputBlit&) = delete;
+    OutputBlit& operator=(const OutputBlit&) = delete;
+    void draw(const Texture& tex, glm::ivec2 window) const {
+        glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, tex.id, 0);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glViewport(0, 0, window.x, window.y);
+        glClearColor(1, 1, 1, 1);  // an output with a transparent background shows on white
+        glClear(GL_COLOR_BUFFER_BIT);
+        glBlitNamedFramebuffer(fbo_, 0, 0, 0, tex.width, tex.height, 0, 0, window.x, window.y, GL_COLOR_BUFFER_BIT,
+                               GL_NEAREST);
+    }
+
+private:
+    GLuint fbo_ = 0;
+};
+
+// The whole window (output and panels), top row first, for --screenshot-window.
+Image read_window(glm::ivec2 size) {
+    Image img;
+    img.width = size.x, img.height = size.y, img.channels = 4;
+    const size_t row = size_t(size.x) * 4;
+    std::vector<uint8_t> px(row * size_t(size.y));
+    glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+    img.pixels.resize(px.size());
+    for (int y = 0; y < size.y; ++y)  // GL rows are bottom-up
+        for (size_t x = 0; x < row; ++x) img.pixels[size_t(y) * row + x] = float(px[size_t(size.y - 1 - y) * row + x]) / 255.0f;
+    return img;
+}
+
+// One shown frame is input(), frame(), present(); the loop runs until the window closes, Esc,
+// or --exit-after frames.
+class ViewLoop {
+public:
+    ViewLoop(const ViewOptions& o, Window& win, Input& in, Runtime& rt, view::ViewSession& session, const Scene& scene,
+             std::vector<view::ScriptEvent> script)
+        : o_(o), win_(win), in_(in), rt_(rt), session_(session), script_(std::move(script)), scripted_(!o.script.empty()),
+          show_ui_(!o.no_ui), cam_(start_camera(o, scene), scene.bounds(), o.size) {
+        clock_.t_min = scene.lines.time_min();
+        clock_.t_max = scene.lines.time_max();
+        clock_.playing = !o.time;
+        clock_.t = o.time ? *o.time : clock_.t_min;
+        watch_.watch(session_.watched_files());
+        info_.graphs = shipped_graphs();
+        info_.backend = rt_.gl->renderer() + " - " + session_.profiler().backend_description();
+    }
+
+    bool running() const {
+        return !quit_ && !glfwWindowShouldClose(win_.get()) && (o_.exit_after == 0 || shown_ < o_.exit_after);
+    }
+    void input();
+    void frame();
+    void present();
+    // Writes --screenshot and --screenshot-window; the exit status (1: a scripted change failed).
+    int finish();
+
+private:
+    static Camera start_camera(const ViewOptions& o, const Scene& scene) {
+        const double t = o.time ? *o.time : scene.lines.time_min();
+        return o.camera.empty() ? frame_bounds(scene.bounds(), o.size)
+                                : CameraPath::load(o.camera).at(t, scene.bounds(), o.size);
+    }
+    void apply_key(const std::string& k);
+    void poll_files();
+    void copy_command();
+    void update_timing();
+    void update_title();
+
+    const ViewOptions& o_;
+    Window& win_;
+    Input& in_;
+    Runtime& rt_;
+    view::ViewSession& session_;
+    std::vector<view::ScriptEvent> script_;
+    const bool scripted_;
+    bool show_ui_, screenshot_now_ = false, quit_ = false;
+    view::OrbitView cam_;
+    view::Playback clock_;
+    view::FileWatch watch_;
+    view::PanelInfo info_;
+    view::PanelActions act_;
+    OutputBlit blit_;
+    std::string shown_error_;
+    Image last_, last_window_;
+    long shown_ = 0;
+    size_t next_event_ = 0;
+    uint64_t index_ = 0;
+    std::chrono::steady_clock::time_point wall_ = std::chrono::steady_clock::now(), last_poll_ = wall_, frame_start_;
+};
+
+void ViewLoop::input() {
+    act_ = {};
+    screenshot_now_ = false;
+    // Scripted events for this frame go through the same paths as real input.
+    for (; next_event_ < script_.size() && script_[next_event_].frame <= shown_; ++next_event_) {
+        const view::ScriptEvent& e = script_[next_event_];
+        if (!e.key.empty()) in_.keys.push_back(e.key);
+        if (e.button == "left") in_.orbit_dx += e.dx, in_.orbit_dy += e.dy;
+        else if (!e.button.empty()) in_.pan_dx += e.dx, in_.pan_dy += e.dy;
+        in_.scroll += e.scroll;
+        if (!e.set.empty()) act_.sets.emplace_back(e.set.substr(0, e.set.find('=')), e.set.substr(e.set.find('=') + 1));
+        if (!e.graph.empty()) act_.switch_to = resolve_graph_path(e.graph);
+        act_.reload |= e.reload;
+    }
+    for (; !in_.keys.empty(); in_.keys.pop_front()) apply_key(in_.keys.front());
+    if (in_.orbit_dx != 0 || in_.orbit_dy != 0) cam_.orbit(in_.orbit_dx, in_.orbit_dy);
+    if (in_.pan_dx != 0 || in_.pan_dy != 0) cam_.pan(in_.pan_dx, in_.pan_dy);
+    if (in_.scroll != 0) cam_.zoom(in_.scroll);
+    in_.orbit_dx = in_.orbit_dy = in_.pan_dx = in_.pan_dy = in_.scroll = 0;
+}
+
+void ViewLoop::apply_key(const std::string& k) {
+    const double step = in_.shift ? 1.0 : 0.1;
+    if (k == "space") clock_.playing = !clock_.playing;
+    else if (k == "left") clock_.scrub(-step);
+    else if (k == "right") clock_.scrub(step);
+    else if (k == "up") clock_.speed *= 2.0;
+    else if (k == "down") clock_.speed *= 0.5;
+    else if (k == "l") clock_.loop = !clock_.loop;
+    else if (k == "r") cam_.reset();
+    else if (k == "s") screenshot_now_ = true;
+    else if (k == "tab") show_ui_ = !show_ui_;
+    else if (k == "?") std::fprintf(stdout, "%s", kHelp);
+}
+
+void ViewLoop::frame() {
+    // The panels of the previous frame asked for these; they apply before this frame runs.
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (show_ui_) view::draw_panels(session_, clock_, info_, act_);
+    poll_files();
+    for (const auto& [name, value] : act_.sets) session_.set(name, value);
+    if (!act_.switch_to.empty()) session_.switch_graph(act_.switch_to);
+    if (act_.reload) session_.rebuild();
+    if (!act_.sets.empty() || !act_.switch_to.empty() || act_.reload) watch_.watch(session_.watched_files());
+    if (act_.reset_view) cam_.reset();
+    if (session_.error() != shown_error_) {
+        shown_error_ = session_.error();
+        if (!shown_error_.empty()) std::fprintf(stderr, "view: error (still showing the last good graph):\n%s\n", shown_error_.c_str());
+        else std::fprintf(stderr, "view: the graph works again\n");
+    }
+    if (act_.copy_command) copy_command();
+    frame_start_ = std::chrono::steady_clock::now();
+    session_.executor().run_frame({index_++, clock_.t, cam_.camera()});
+}
+
+// Hot reload: the graph and shader files, polled twice a second (every 12 frames when scripted).
+void ViewLoop::poll_files() {
+    const auto now = std::chrono::steady_clock::now();
+    if (!(scripted_ ? shown_ % 12 == 0 : now - last_poll_ > std::chrono::milliseconds(500))) return;
+    last_poll_ = now;
+    const auto changed = watch_.changed();
+    if (changed.empty()) return;
+    std::fprintf(stderr, "view: %s changed, reloading\n", changed.front().c_str());
+    act_.reload = true;
+}
+
+void ViewLoop::copy_command() {
+    const std::string camera_file = (std::filesystem::path(o_.screenshot_dir) / "pathlet_view_camera.json").string();
+    write_camera(camera_file, cam_.camera());
+    info_.command = render_command(session_, clock_.t, o_.size, camera_file);
+    glfwSetClipboardString(win_.get(), info_.command.c_str());
+    std::fprintf(stdout, "%s\n", info_.command.c_str());
+}
+
+void ViewLoop::present() {
+    const Texture tex = session_.executor().texture(session_.compiled().outputs.front().resource);
+    blit_.draw(tex, o_.size);
+    if (!o_.screenshot.empty() || screenshot_now_) last_ = read_texture(tex.id, tex.width, tex.height, 0, 4);
+    info_.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start_).count();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!o_.screenshot_window.empty()) last_window_ = read_window(o_.size);
+    if (screenshot_now_) {
+        char name[64];
+        std::snprintf(name, sizeof name, "pathlet_view_%05ld.png", shown_);
+        const std::string path = (std::filesystem::path(o_.screenshot_dir) / name).string();
+        write_image(path, last_);
+        std::fprintf(stderr, "screenshot: %s\n", path.c_str());
+    }
+    update_timing();
+    update_title();
+    glfwSwapBuffers(win_.get());
+    glfwPollEvents();
+    quit_ = glfwGetKey(win_.get(), GLFW_KEY_ESCAPE) == GLFW_PRESS && !ui_wants_keys();
+    const auto now = std::chrono::steady_clock::now();
+    clock_.advance(scripted_ ? 0.04 : std::chrono::duration<double>(now - wall_).count());
+    wall_ = now;
+    ++shown_;
+}
+
+// Per-pass timing bars: medians of the last 30 frames, then the profiler starts afresh
+// (bounded memory over an afternoon).
+void ViewLoop::update_timing() {
+    Profiler& prof = session_.profiler();
+    if (prof.frames_recorded() < 30) return;
+    prof.flush();
+    info_.timing.clear();
+    for (const auto& p : prof.passes()) info_.timing.push_back({p.name, p.gpu_ms.median});
+    info_.backend = rt_.gl->renderer() + " - " + prof.backend_description();
+    prof.init(prof.backend(), rt_.gl->renderer());
+    prof.set_warmup_frames(0);
+}
+
+void ViewLoop::update_title() {
+    double window = 0.0;
+    for (const auto& v : session_.graph().variables)
+        if (v.name == "window" && v.value.is_number()) window = v.value.get<double>();
+    char title[256];
+    std::snprintf(title, sizeof title, "pathlet view - %s - t = %.2f s (window %.2g s) x%.3g %s%s - %.0f ms",
+                  graph_display_name(session_.graph()).c_str(), clock_.t, window, clock_.speed,
+                  clock_.playing ? "playing" : "paused", clock_.loop ? ", loop" : "", info_.frame_ms);
+    glfwSetWindowTitle(win_.get(), title);
+}
+
+int ViewLoop::finish() {
+    if (!o_.screenshot.empty()) {
+        if (last_.width == 0) throw std::runtime_error("view: no frame was shown; no screenshot written");
+        write_image(o_.screenshot, last_);
+        std::fprintf(stderr, "screenshot: %s\n", o_.screenshot.c_str());
+    }
+    if (!o_.screenshot_window.empty()) {
+        if (last_window_.width == 0) throw std::runtime_error("view: no frame was shown; no window screenshot written");
+        write_image(o_.screenshot_window, last_window_);
+        std::fprintf(stderr, "window screenshot: %s\n", o_.screenshot_window.c_str());
+    }
+    return scripted_ && !session_.error().empty() ? 1 : 0;  // a script whose last change failed
+}
+
 int run(const std::vector<std::string>& argv) {
     Args a("view",
            "Shows a graph's first output in a window (OpenGL 4.5 core through GLFW; needs a display:\n"
@@ -166,239 +457,40 @@ int run(const std::vector<std::string>& argv) {
            "reloads it (shaders are read from the build's pass folders and share/shaders; point\n"
            "PATHLET_SHADER_PATH at your source folders to edit them in place); an error keeps the last\n"
            "good graph running and shows the error. Without --time it plays the data's time span in a\n"
-           "loop; with --time it starts paused there. Close the window or press Esc to quit.");
-    a.positional("GRAPH", "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
-        .option("time", "T", "", "start paused at this animation time in seconds (default: play from the start)")
-        .option("size", "WxH", "1280x720", "window and output size in pixels")
-        .multi("set", "NAME=VALUE", "override a graph variable or a pass parameter, as for render")
-        .option("camera", "FILE", "", "start from this camera path's camera at the start time (as for render)")
-        .option("exit-after", "N", "0", "quit after N shown frames (0: run until closed)")
-        .option("screenshot", "FILE", "", "on exit, write the graph output of the last frame (PNG/EXR)")
-        .option("screenshot-window", "FILE", "", "on exit, write the whole window (graph output and panels) as PNG")
-        .option("screenshot-dir", "DIR", ".", "where the s key writes pathlet_view_<frame>.png (and 'copy as --set' its camera)")
-        .option("script", "FILE", "", "scripted input (JSON events per frame, fixed 1/25 s clock; see view/view_script.hpp)")
-        .flag("no-ui", "no panels (tab shows them)")
-        .multi("plugin-dir", "DIR", "also load plugins from DIR");
-    add_scene_options(a);
+           "loop; with --time it starts paused there (and --camera starts from its camera at that time).\n"
+           "Close the window or press Esc to quit.");
+    ViewOptions o;
+    o.declare(a);
     a.example("pathlet view", "the built-in phantom through variant1_lineao, playing")
         .example("pathlet view isl --time 9 --set window=3", "illuminated streamlines, paused at 9 s, 3 s pathlets")
         .example("xvfb-run -a pathlet view --exit-after 10 --screenshot shot.png", "headless, for tests");
     if (!a.parse(argv)) return 0;
-
-    std::string graph_path;
-    glm::ivec2 size;
-    try {
-        graph_path = resolve_graph_path(a.pos("GRAPH").empty() ? "variant1_lineao" : a.pos("GRAPH"));
-        size = parse_size(a.get("size"));
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    long exit_after = a.integer("exit-after");
-    if (exit_after < 0) throw UsageError("--exit-after must be >= 0");
+    if (o.exit_after < 0) throw UsageError("--exit-after must be >= 0");
+    const std::string graph_path = resolve_graph_path(o.graph);
     std::vector<view::ScriptEvent> script;
-    if (a.has("script")) script = view::load_script(a.get("script"));
-    const bool scripted = a.has("script");
+    if (!o.script.empty()) script = view::load_script(o.script);
 
-    GlfwWindow win;
-    if (!glfwInit())
-        throw std::runtime_error("view: cannot open a window: no display (DISPLAY is '" +
-                                 std::string(std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "") +
-                                 "'). Run it on a desktop, or under Xvfb: xvfb-run pathlet view ...");
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
-    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-    win.w = glfwCreateWindow(size.x, size.y, "pathlet view", nullptr, nullptr);
-    if (!win.w) throw std::runtime_error("view: the display offers no OpenGL 4.5 core window");
-    glfwMakeContextCurrent(win.w);
-    glfwSwapInterval(scripted ? 0 : 1);
+    Window win;
     Input input;
-    glfwSetWindowUserPointer(win.w, &input);
-    install_callbacks(win.w);  // before ImGui's, which chain to these
-
+    win.open(o.size, /*vsync=*/o.script.empty(), &input, install_callbacks);
     Runtime rt;
-    rt.load_plugins(a.all("plugin-dir"));
-    Scene scene = load_scene(a, false);
+    o.plugins.load(rt);
+    const Scene scene = o.data.load(false);
     rt.gl = GlContext::adopt_current("GLFW window");
     std::fprintf(stderr, "%s\n", rt.gl->summary().c_str());
-
-    ImGuiGuard imgui;
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
-    ImGui_ImplGlfw_InitForOpenGL(win.w, true);
-    ImGui_ImplOpenGL3_Init("#version 450");
-    imgui.on = true;
-    bool show_ui = !a.has("no-ui");
-
+    win.open_ui();
     // The graph: compiled and set up once (as render does); changed in place afterwards.
     GpuScene gpu;
     gpu.upload(scene);
-    view::ViewSession session(rt, gpu, size, graph_path, a.all("set"));
-    view::FileWatch watch;
-    watch.watch(session.watched_files());
-    view::PanelInfo info;
-    info.graphs = shipped_graphs();
-    info.backend = rt.gl->renderer() + " - " + session.profiler().backend_description();
-    std::string shown_error;
-
-    view::Playback clock;
-    clock.t_min = scene.lines.time_min();
-    clock.t_max = scene.lines.time_max();
-    clock.playing = !a.has("time");
-    clock.t = a.has("time") ? std::stod(a.get("time")) : clock.t_min;
-    const Camera start = a.has("camera") ? CameraPath::load(a.get("camera")).at(clock.t, scene.bounds(), size)
-                                         : frame_bounds(scene.bounds(), size);
-    view::OrbitView cam(start, scene.bounds(), size);
+    view::ViewSession session(rt, gpu, o.size, graph_path, o.sets);
+    ViewLoop loop(o, win, input, rt, session, scene, std::move(script));
     std::fprintf(stderr, "%s", kHelp);
-
-    Image last, last_window;
-    long shown = 0;
-    uint64_t index = 0;
-    size_t next_event = 0;
-    auto wall = std::chrono::steady_clock::now();
-    auto last_poll = wall;
-    while (!glfwWindowShouldClose(win.w) && (exit_after == 0 || shown < exit_after)) {
-        view::PanelActions act;
-        // Scripted events for this frame go through the same paths as real input.
-        for (; next_event < script.size() && script[next_event].frame <= shown; ++next_event) {
-            const view::ScriptEvent& e = script[next_event];
-            if (!e.key.empty()) input.keys.push_back(e.key);
-            if (e.button == "left") input.orbit_dx += e.dx, input.orbit_dy += e.dy;
-            else if (!e.button.empty()) input.pan_dx += e.dx, input.pan_dy += e.dy;
-            input.scroll += e.scroll;
-            if (!e.set.empty()) act.sets.emplace_back(e.set.substr(0, e.set.find('=')), e.set.substr(e.set.find('=') + 1));
-            if (!e.graph.empty()) act.switch_to = resolve_graph_path(e.graph);
-            act.reload |= e.reload;
-        }
-        bool screenshot_now = false;
-        for (; !input.keys.empty(); input.keys.pop_front()) {
-            const std::string& k = input.keys.front();
-            const double step = input.shift ? 1.0 : 0.1;
-            if (k == "space") clock.playing = !clock.playing;
-            else if (k == "left") clock.scrub(-step);
-            else if (k == "right") clock.scrub(step);
-            else if (k == "up") clock.speed *= 2.0;
-            else if (k == "down") clock.speed *= 0.5;
-            else if (k == "l") clock.loop = !clock.loop;
-            else if (k == "r") cam.reset();
-            else if (k == "s") screenshot_now = true;
-            else if (k == "tab") show_ui = !show_ui;
-            else if (k == "?") std::fprintf(stdout, "%s", kHelp);
-        }
-        if (input.orbit_dx != 0 || input.orbit_dy != 0) cam.orbit(input.orbit_dx, input.orbit_dy);
-        if (input.pan_dx != 0 || input.pan_dy != 0) cam.pan(input.pan_dx, input.pan_dy);
-        if (input.scroll != 0) cam.zoom(input.scroll);
-        input.orbit_dx = input.orbit_dy = input.pan_dx = input.pan_dy = input.scroll = 0;
-
-        // The panels of the previous frame asked for these; they apply before this frame runs.
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        if (show_ui) view::draw_panels(session, clock, info, act);
-        // Hot reload: the graph and shader files, polled twice a second (every 12 frames when scripted).
-        const auto now_poll = std::chrono::steady_clock::now();
-        if (scripted ? shown % 12 == 0 : now_poll - last_poll > std::chrono::milliseconds(500)) {
-            last_poll = now_poll;
-            const auto changed = watch.changed();
-            if (!changed.empty()) {
-                std::fprintf(stderr, "view: %s changed, reloading\n", changed.front().c_str());
-                act.reload = true;
-            }
-        }
-        for (const auto& [name, value] : act.sets) session.set(name, value);
-        if (!act.switch_to.empty()) session.switch_graph(act.switch_to);
-        if (act.reload) session.rebuild();
-        if (!act.sets.empty() || !act.switch_to.empty() || act.reload) watch.watch(session.watched_files());
-        if (act.reset_view) cam.reset();
-        if (session.error() != shown_error) {
-            shown_error = session.error();
-            if (!shown_error.empty()) std::fprintf(stderr, "view: error (still showing the last good graph):\n%s\n", shown_error.c_str());
-            else std::fprintf(stderr, "view: the graph works again\n");
-        }
-        if (act.copy_command) {
-            const std::string camera_file = (std::filesystem::path(a.get("screenshot-dir")) / "pathlet_view_camera.json").string();
-            write_camera(camera_file, cam.camera());
-            info.command = render_command(session, clock.t, size, camera_file);
-            glfwSetClipboardString(win.w, info.command.c_str());
-            std::fprintf(stdout, "%s\n", info.command.c_str());
-        }
-
-        auto t0 = std::chrono::steady_clock::now();
-        Executor& exec = session.executor();
-        exec.run_frame({index++, clock.t, cam.camera()});
-        Texture tex = exec.texture(session.compiled().outputs.front().resource);
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex.id, 0);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glViewport(0, 0, size.x, size.y);
-        glClearColor(1, 1, 1, 1);  // an output with a transparent background shows on white
-        glClear(GL_COLOR_BUFFER_BIT);
-        glBlitNamedFramebuffer(fbo, 0, 0, 0, tex.width, tex.height, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
-                               GL_NEAREST);
-        glDeleteFramebuffers(1, &fbo);
-        if (a.has("screenshot") || screenshot_now) last = read_texture(tex.id, tex.width, tex.height, 0, 4);
-        info.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (a.has("screenshot-window")) {
-            last_window.width = size.x, last_window.height = size.y, last_window.channels = 4;
-            std::vector<uint8_t> px(size_t(size.x) * size_t(size.y) * 4);
-            glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-            last_window.pixels.resize(px.size());
-            for (int y = 0; y < size.y; ++y)  // GL rows are bottom-up
-                for (size_t x = 0; x < size_t(size.x) * 4; ++x)
-                    last_window.pixels[size_t(y) * size_t(size.x) * 4 + x] =
-                        float(px[size_t(size.y - 1 - y) * size_t(size.x) * 4 + x]) / 255.0f;
-        }
-        if (screenshot_now) {
-            char name[64];
-            std::snprintf(name, sizeof name, "pathlet_view_%05ld.png", shown);
-            const std::string path = (std::filesystem::path(a.get("screenshot-dir")) / name).string();
-            write_image(path, last);
-            std::fprintf(stderr, "screenshot: %s\n", path.c_str());
-        }
-        // Per-pass timing bars: medians of the last 30 frames, then the profiler starts afresh
-        // (bounded memory over an afternoon).
-        Profiler& prof = session.profiler();
-        if (prof.frames_recorded() >= 30) {
-            prof.flush();
-            info.timing.clear();
-            for (const auto& p : prof.passes()) info.timing.push_back({p.name, p.gpu_ms.median});
-            info.backend = rt.gl->renderer() + " - " + prof.backend_description();
-            prof.init(prof.backend(), rt.gl->renderer());
-            prof.set_warmup_frames(0);
-        }
-        double window = 0.0;  // for the title
-        for (const auto& v : session.graph().variables)
-            if (v.name == "window" && v.value.is_number()) window = v.value.get<double>();
-        char title[256];
-        std::snprintf(title, sizeof title, "pathlet view - %s - t = %.2f s (window %.2g s) x%.3g %s%s - %.0f ms",
-                      graph_display_name(session.graph()).c_str(), clock.t, window, clock.speed,
-                      clock.playing ? "playing" : "paused", clock.loop ? ", loop" : "", info.frame_ms);
-        glfwSetWindowTitle(win.w, title);
-        glfwSwapBuffers(win.w);
-        glfwPollEvents();
-        if (glfwGetKey(win.w, GLFW_KEY_ESCAPE) == GLFW_PRESS && !ui_wants_keys()) break;
-        auto now = std::chrono::steady_clock::now();
-        clock.advance(scripted ? 0.04 : std::chrono::duration<double>(now - wall).count());
-        wall = now;
-        ++shown;
+    while (loop.running()) {
+        loop.input();
+        loop.frame();
+        loop.present();
     }
-    if (a.has("screenshot")) {
-        if (last.width == 0) throw std::runtime_error("view: no frame was shown; no screenshot written");
-        write_image(a.get("screenshot"), last);
-        std::fprintf(stderr, "screenshot: %s\n", a.get("screenshot").c_str());
-    }
-    if (a.has("screenshot-window")) {
-        if (last_window.width == 0) throw std::runtime_error("view: no frame was shown; no window screenshot written");
-        write_image(a.get("screenshot-window"), last_window);
-        std::fprintf(stderr, "window screenshot: %s\n", a.get("screenshot-window").c_str());
-    }
-    if (scripted && !session.error().empty()) return 1;  // a script whose last change failed
-    return 0;
+    return loop.finish();
 }
 
 PATHLET_COMMAND("view", "show a graph's output live in a window: camera, clock, parameter panels, hot reload", run);

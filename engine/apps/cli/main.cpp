@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
         } catch (const UsageError& e) {
             std::fprintf(stderr, "pathlet %s: %s\n(see 'pathlet %s --help')\n", c.name.c_str(), e.what(), c.name.c_str());
             return 2;
+        } catch (const DeclarationError& e) {  // a bad option declaration: a bug in pathlet
+            std::fprintf(stderr, "pathlet %s: internal error: %s\n", c.name.c_str(), e.what());
+            return 70;  // EX_SOFTWARE
         } catch (const std::exception& e) {
             std::fprintf(stderr, "pathlet %s: error: %s\n", c.name.c_str(), e.what());
             return 1;

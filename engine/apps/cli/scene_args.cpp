@@ -1,53 +1,15 @@
 #include "scene_args.hpp"
 
+#include "fraction_progress.hpp"
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
 #include "io/units.hpp"
 #include "phantom/phantom.hpp"
-#include "fraction_progress.hpp"
+#include "util/text.hpp"
 
 #include <cstdio>
 
 namespace pathlet::cli {
-
-void add_scene_options(Args& a) {
-    a.option("data", "FILE", "", "pathlines: .vtk (legacy), .vtp, .pathlet, text rows 'x y z x y z ...', or tracts .trk/.tck")
-        .option("mesh", "FILE", "", "vessel wall: .gltf/.glb, .stl or .obj (optional)")
-        .option("phantom", "study|small", "study", "built-in aortic-arch phantom used when --data is not given")
-        .option("time-array", "NAME", "", "point array holding time (default: time, Time, t, IntegrationTime)")
-        .option("velocity-array", "NAME", "", "point array holding velocity (default: velocity, Velocity, U, v)")
-        .option("time-step", "SECONDS", "0", "text rows: seconds between samples (0: 0.01)")
-        .option("units", "LENGTH[,VELOCITY]", "",
-                "units of the data where the file does not say them, e.g. mm or m,m/s (velocity default: LENGTH/s when "
-                "time is in seconds); shown by the legend")
-        .flag("streamlines", "VTK lines with neither time nor velocity (streamlines, centrelines) load as lines drawn whole")
-        .flag("pseudo-time", "lines without time (tracts, --streamlines) animate along a pseudo-time (arc length)");
-}
-
-std::string units_option(const Args& a) {
-    const std::string spec = a.get("units");
-    try {
-        Units probe;
-        io::apply_units_option(probe, spec);  // a bad spec is a usage error before any loading
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    return spec;
-}
-
-SceneSource scene_source(const Args& a) {
-    SceneSource s;
-    s.data = a.get("data");
-    s.mesh = a.get("mesh");
-    s.phantom = a.get("phantom");
-    s.time_array = a.get("time-array");
-    s.velocity_array = a.get("velocity-array");
-    s.time_step = a.number("time-step");
-    s.units = units_option(a);
-    s.streamlines = a.has("streamlines");
-    s.pseudo_time = a.has("pseudo-time");
-    return s;
-}
 
 Scene load_scene(const SceneSource& src, bool quiet) {
     Scene scene;
@@ -68,6 +30,15 @@ Scene load_scene(const SceneSource& src, bool quiet) {
         io::LoadReport rep;
         scene.lines = io::load_pathlines(src.data, o, &rep);
         scene.source = src.data;
+        // Nothing to draw is an error, not a blank picture (pathlet info still shows the numbers).
+        if (scene.lines.line_count() == 0) {
+            std::vector<std::string> dropped;
+            for (const auto& w : rep.warnings)
+                if (w.rfind("dropped", 0) == 0) dropped.push_back(w);
+            throw DataError(src.data + ": no line to draw after repair (" +
+                                (dropped.empty() ? std::string("the file holds no lines") : text::join(dropped, "; ")) +
+                                "); 'pathlet info " + text::shell_quote(src.data) + "' shows what it holds");
+        }
         for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", src.data.c_str(), w.c_str());
     }
     if (!src.mesh.empty()) {

@@ -1,6 +1,7 @@
 #include "video_writer.hpp"
 
 #include "util/atomic_file.hpp"
+#include "util/text.hpp"
 
 #include <csignal>
 #include <cstdlib>
@@ -51,11 +52,7 @@ private:
     bool was_pending_ = false;
 };
 
-std::string shell_quote(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
+using text::shell_quote;
 
 std::string make_stderr_file() {
     std::string templ = (fs::temp_directory_path() / "pathlet-ffmpeg-XXXXXX").string();

@@ -17,6 +17,7 @@
 #include "measure.hpp"
 #include "renderer.hpp"
 #include "util/output_check.hpp"
+#include "util/text.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -262,7 +263,7 @@ std::vector<Readback> plan_readbacks(const CompiledGraph& cg, const GraphFile& g
         if (r < 0) {
             std::string why;
             for (const auto& c : cg.culled) why += "; pass '" + c.name + "' is culled (" + c.reason + ")";
-            std::string m = closest_match(name, known);
+            std::string m = text::closest_match(name, known);
             throw std::invalid_argument("outputs: no resource '" + name + "' in the compiled graph" +
                                         (m.empty() ? "" : " (did you mean '" + m + "'?)") + "; its resources: " +
                                         [&] {

@@ -3,6 +3,7 @@
 #include "rt_ao.hpp"
 
 #include "executor.hpp"
+#include "graph/graph_model.hpp"
 #include "util/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -28,18 +29,6 @@ Patch not_measurable(const std::string& why) {
     Patch p;
     p.why_not = why;
     return p;
-}
-
-json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot read");
-    std::stringstream s;
-    s << in.rdbuf();
-    try {
-        return json::parse(s.str(), nullptr, true, /*ignore_comments=*/true);
-    } catch (const json::exception& e) {
-        throw std::runtime_error(path + ": not valid JSON: " + e.what());
-    }
 }
 
 // Binds gbuffer.line_id and the AO that reaches the image, and keeps them (outputs without
@@ -155,10 +144,34 @@ Image error_image(const FrameSample& f, const std::vector<float>& err) {
     return img;
 }
 
+namespace {
+
+// The graph that runs: one that extends the user's file with what patch_graph changed, so
+// hook files and plugin folders next to the user's graph are still found from the work folder.
+json patch_document(const std::string& graph_path, const json& full, const json& patched) {
+    json doc = {{"extends", fs::absolute(graph_path).lexically_normal().string()},
+                {"passes", json::array()},
+                {"resources", json::object()},
+                {"outputs", patched["outputs"]}};
+    for (const json& p : patched["passes"]) {
+        const auto same = std::find_if(full["passes"].begin(), full["passes"].end(),
+                                       [&](const json& b) { return b.value("name", "") == p.value("name", ""); });
+        if (same == full["passes"].end() || (*same).value("outputs", json()) != p.value("outputs", json()))
+            doc["passes"].push_back({{"name", p["name"]}, {"outputs", p["outputs"]}});
+    }
+    for (const auto& [name, r] : patched["resources"].items())
+        if (!full.contains("resources") || !full["resources"].contains(name)) doc["resources"][name] = r;
+    return doc;
+}
+
+}  // namespace
+
 QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOptions& q) {
     QualityResult res;
-    json g = read_json(q.graph_path);
-    res.graph = g.value("name", fs::path(q.graph_path).stem().string());
+    // The graph as one document (its "extends" chain merged in) is what the patch looks at.
+    const json full = expanded_graph_json(q.graph_path);
+    res.graph = full.value("name", fs::path(q.graph_path).stem().string());
+    json g = full;
     Patch patch = patch_graph(g);
     if (!patch.why_not.empty()) {
         res.not_measured = patch.why_not;
@@ -175,7 +188,7 @@ QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOpti
     fs::create_directories(q.work_dir);
     // A dot file in the work folder, gone however the run ends.
     opt.graph_path = (fs::path(q.work_dir) / ("." + res.graph + ".quality.json")).string();
-    write_file_atomic(opt.graph_path, g.dump(2));
+    write_file_atomic(opt.graph_path, patch_document(q.graph_path, full, g).dump(2));
     struct Remove {
         std::string p;
         ~Remove() {

@@ -1,30 +1,30 @@
 #include "view/view_script.hpp"
 
-#include <nlohmann/json.hpp>
+#include "util/text.hpp"
+
+#include <pathlet/scene.hpp>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace pathlet::view {
 
 std::vector<ScriptEvent> load_script(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open the view script");
-    std::stringstream s;
-    s << in.rdbuf();
-    nlohmann::json j = nlohmann::json::parse(s.str(), nullptr, false, true);
-    if (j.is_discarded()) throw std::runtime_error(path + ": the view script is not valid JSON");
-    if (!j.is_array()) throw std::runtime_error(path + ":/: a view script is an array of events");
+    return parse_script(text::read_json_text(path, "view script"), path);
+}
+
+std::vector<ScriptEvent> parse_script(const std::string& text, const std::string& path) {
+    const nlohmann::json j = text::parse_json_of(path, text, "view script");
+    if (!j.is_array()) throw DataError(path + ":/: a view script is an array of events");
     static const std::vector<std::string> keys{"space", "left", "right", "up", "down", "r", "l", "s", "?"};
     std::vector<ScriptEvent> out;
     for (size_t i = 0; i < j.size(); ++i) {
         const nlohmann::json& e = j[i];
         const std::string at = path + ":/" + std::to_string(i);
-        auto bad = [&](const std::string& why) { throw std::runtime_error(at + ": " + why + ", got " + e.dump()); };
-        if (!e.is_object() || !e.contains("frame") || !e["frame"].is_number_integer() || e["frame"].get<long>() < 0)
-            bad("an event needs \"frame\": a shown frame number >= 0");
+        auto bad = [&](const std::string& why) { throw DataError(at + ": " + why + ", got " + e.dump()); };
+        if (!e.is_object() || !e.contains("frame") || !e["frame"].is_number_integer() || e["frame"].get<long>() < 0 ||
+            e["frame"].get<long>() > 1000000000L)
+            bad("an event needs \"frame\": a shown frame number in 0..1e9");
         ScriptEvent ev;
         ev.frame = e["frame"].get<long>();
         if (e.contains("key")) {
@@ -36,7 +36,9 @@ std::vector<ScriptEvent> load_script(const std::string& path) {
             if (!d.is_array() || d.size() != 2 || !d[0].is_number() || !d[1].is_number()) bad("\"drag\" must be [dx, dy] in pixels");
             ev.dx = float(std::clamp(d[0].get<double>(), -1e5, 1e5));
             ev.dy = float(std::clamp(d[1].get<double>(), -1e5, 1e5));
-            ev.button = e.value("button", std::string("left"));
+            ev.button = e.contains("button") && e["button"].is_string() ? e["button"].get<std::string>()
+                        : e.contains("button")                            ? std::string("?")
+                                                                          : std::string("left");
             if (ev.button != "left" && ev.button != "right" && ev.button != "middle") bad("\"button\" must be left, right or middle");
         } else if (e.contains("scroll")) {
             if (!e["scroll"].is_number()) bad("\"scroll\" must be a number of wheel steps");

@@ -23,7 +23,9 @@ struct ScriptEvent {
     bool reload = false;
 };
 
-// Throws std::runtime_error naming the file and the JSON pointer of a bad event.
+// Throws DataError naming the file and the JSON pointer of a bad event; the file is read with
+// the limits of graph files (util/text.hpp: size, nesting, numbers).
 std::vector<ScriptEvent> load_script(const std::string& path);
+std::vector<ScriptEvent> parse_script(const std::string& text, const std::string& path);
 
 }  // namespace pathlet::view

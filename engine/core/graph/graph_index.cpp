@@ -1,5 +1,8 @@
 // Name resolution: pass types, declared + implicit resources, pin bindings, writers.
 #include "graph_internal.hpp"
+#include "../plugin_trust.hpp"
+
+#include <filesystem>
 
 namespace pathlet::graph_detail {
 
@@ -73,7 +76,20 @@ std::string unknown_type_hint(const PassRegistry& reg) {
     std::string dirs = reg.searched_dirs().empty() ? std::string("(no folder)") : join(reg.searched_dirs(), ", ");
     return "; no plugin on the search path provides it (searched: " + dirs +
            "). Add the folder holding its .so with --plugin-dir DIR, PATHLET_PLUGIN_PATH=DIR[:DIR...], or "
-           "\"plugin_dirs\": [\"DIR\"] in the graph (relative to the graph file)";
+           "\"plugin_dirs\": [\"DIR\"] in the graph (relative to the graph file; loaded once trusted: pathlet trust DIR)";
+}
+
+// The type may well come from a plugin folder of the graph that was not loaded: say so, with
+// the command that trusts it, instead of suggesting a typo.
+std::string untrusted_hint(const std::vector<GraphFile::UntrustedDir>& dirs) {
+    std::string s = "; it may come from the graph's plugin folder";
+    for (size_t i = 0; i < dirs.size(); ++i) {
+        std::vector<std::string> names;
+        for (const auto& f : dirs[i].files) names.push_back(std::filesystem::path(f).filename().string());
+        s += std::string(i ? "; or " : " ") + dirs[i].dir + " (" + join(names) + "), not loaded because it is not trusted: " +
+             trust_command(dirs[i].dir);
+    }
+    return s + " trusts it (--trust-graph-plugins: for one run)";
 }
 
 GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<Diagnostic>& diags) {
@@ -98,8 +114,10 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
         }
         idx.types.push_back(t);
         if (!t) {
-            error(p.pointer + "/type", "unknown pass type '" + p.type + "'" + did_you_mean(p.type, reg.names()) +
-                                           unknown_type_hint(reg));
+            error(p.pointer + "/type", "unknown pass type '" + p.type + "'" +
+                                           (g.untrusted_plugin_dirs.empty()
+                                                ? did_you_mean(p.type, reg.names()) + unknown_type_hint(reg)
+                                                : untrusted_hint(g.untrusted_plugin_dirs)));
             continue;
         }
         // Unbound outputs get an implicit resource "<pass>.<pin>" shaped by the pin; unbound

@@ -4,6 +4,7 @@
 #include "../formats.hpp"
 #include "../pass_registry.hpp"
 #include "graph_model.hpp"
+#include "util/text.hpp"
 
 #include <map>
 #include <string>
@@ -11,13 +12,11 @@
 
 namespace pathlet::graph_detail {
 
-// ---- text -------------------------------------------------------------------------------
-std::string join(const std::vector<std::string>& v, const char* sep = ", ");
-// " (did you mean 'x'?)" or "" — appended to "unknown ..." messages.
-std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates,
-                         const std::string& prefix = "");
-std::string pointer_escape(const std::string& key);  // RFC 6901: "~" -> "~0", "/" -> "~1"
-std::string quoted(const std::string& s);            // 'x'
+// ---- text (util/text.hpp) ----------------------------------------------------------------
+using text::did_you_mean;
+using text::join;
+using text::pointer_escape;
+using text::quoted;
 
 // ---- references -------------------------------------------------------------------------
 // "name@prev" -> {name, prev = true}

@@ -91,6 +91,13 @@ struct GraphFile {
     // found there (after the shader path).
     std::vector<std::string> dirs;
     std::vector<std::string> extends;      // the chain of base graphs, nearest first (file paths)
+    // Folders of plugin_dirs whose plugins were not loaded because the folder is not trusted
+    // (Runtime::load_graph_plugins, validate): "unknown pass type" says so instead of guessing a typo.
+    struct UntrustedDir {
+        std::string dir;                 // canonical
+        std::vector<std::string> files;  // its plugin files, never opened
+    };
+    std::vector<UntrustedDir> untrusted_plugin_dirs;
 };
 
 // ---- compiled ---------------------------------------------------------------------------
@@ -179,8 +186,5 @@ CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::iv
 std::string graph_to_dot(const CompiledGraph& cg, const GraphFile& g);
 std::string plan_to_text(const CompiledGraph& cg);   // order, lifetimes, memory before/after pooling
 json plan_to_json(const CompiledGraph& cg);
-
-// "did you mean": the closest candidate within a small edit distance, or "".
-std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
 
 }  // namespace pathlet

@@ -34,16 +34,14 @@
 //
 // Every problem is collected with its JSON pointer; one GraphError is thrown at the end.
 #include "graph_internal.hpp"
-#include "io/limits.hpp"
+
+#include <pathlet/scene.hpp>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace pathlet {
 
@@ -396,31 +394,13 @@ Diagnostic placed(Diagnostic d, const std::string& text, size_t offset) {
 }  // namespace
 
 json graph_detail::graph_json_from_text(const std::string& text, const std::string& path) {
-    // Before parsing: a value nested 100k deep would overflow the stack when it is copied or
-    // printed in a message. Graphs are a few levels deep; the cap is io::max_json_depth().
-    const int limit = io::max_json_depth();
-    if (io::JsonDepth d = io::json_nesting_depth(text, limit); d.first_too_deep != size_t(-1))
-        throw GraphError({placed({path, "", "nesting deeper than " + std::to_string(limit) +
-                                                " levels (arrays/objects); a graph needs a handful. PATHLET_MAX_JSON_DEPTH raises the cap"},
-                                 text, d.first_too_deep)});
+    // text::parse_json refuses nesting beyond io::max_json_depth() before parsing: a value
+    // nested 100k deep would overflow the stack when it is copied or printed in a message.
     try {
-        return json::parse(text, nullptr, true, /*ignore_comments=*/true);
-    } catch (const json::parse_error& e) {
-        std::string what = e.what();
-        size_t at = what.find(": ", what.find("parse error"));  // drop "[json.exception...] parse error at ...: "
-        std::string msg = at == std::string::npos ? what : what.substr(at + 2);
-        if (msg.rfind("syntax error", 0) != 0) msg = "syntax error: " + msg;
-        // e.byte is 1-based and points at the last byte read.
-        throw GraphError({placed({path, "", msg}, text, e.byte ? e.byte - 1 : 0)});
-    } catch (const json::out_of_range& e) {
-        // A number literal beyond double's range (1e400). nlohmann gives no position: find the token.
-        std::string what = e.what();
-        size_t q = what.find('\'');
-        std::string token = q == std::string::npos ? "" : what.substr(q + 1, what.rfind('\'') - q - 1);
-        Diagnostic d{path, "", "number out of range: " + (token.empty() ? what : "'" + token + "'") +
-                                   " does not fit a double (|x| < 1.8e308)"};
-        const size_t at = token.empty() ? std::string::npos : text.find(token);
-        throw GraphError({at == std::string::npos ? d : placed(d, text, at)});
+        return text::parse_json(text);
+    } catch (const text::JsonError& e) {
+        Diagnostic d{path, "", e.what()};
+        throw GraphError({e.offset == std::string::npos ? d : placed(d, text, e.offset)});
     }
 }
 
@@ -428,13 +408,14 @@ json graph_detail::read_graph_json(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw GraphError({{path, "", "is a directory, not a graph file (give a .json file, e.g. " + path + "/*.json)"}});
-    if (std::filesystem::file_size(path, ec) > (16u << 20) && !ec)
-        throw GraphError({{path, "", "larger than 16 MiB; not a graph file"}});
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw GraphError({{path, "", std::string("cannot open graph file: ") + std::strerror(errno)}});
-    std::ostringstream s;
-    s << in.rdbuf();
-    return graph_json_from_text(s.str(), path);
+    std::string bytes;
+    try {
+        bytes = text::read_json_text(path, "graph file");
+    } catch (const DataError& e) {
+        const std::string what = e.what();
+        throw GraphError({{path, "", what.substr(std::min(what.size(), path.size() + 2))}});  // the file is in the diagnostic
+    }
+    return graph_json_from_text(bytes, path);
 }
 
 namespace {

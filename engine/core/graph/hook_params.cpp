@@ -250,7 +250,7 @@ void check_function(const std::string& name, const std::string& role, const std:
         defined.push_back(f);
         line_of.emplace(f, 1 + int(std::count(own.text.begin(), own.text.begin() + it->position(), '\n')));
     }
-    const std::string near = closest_match(fn, defined);
+    const std::string near = text::closest_match(fn, defined);
     throw HookError(own.file + ":" + std::to_string(near.empty() ? 1 : line_of[near]) + ": a " +
                     (role == "width" ? "width" : "colour") + " hook defines " + hook_function(role) +
                     (near.empty() ? "; this file defines no such function" : "; this file defines '" + near + "' instead"));

@@ -2,6 +2,7 @@
 // and a Chrome/Perfetto trace. Warm-up frames are left out of every statistic (they still
 // appear in the trace, marked, because JIT stalls are worth seeing).
 #include "profiler/profiler.hpp"
+#include "util/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,12 +33,7 @@ std::string fmt(const char* format, double v) {
     return buf;
 }
 
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
+using text::csv_field;
 
 int64_t to_us(double ms) { return int64_t(std::llround(ms * 1000.0)); }
 

@@ -16,6 +16,7 @@ double env_number(const char* name, double def, double min) {
 
 double max_inflate_ratio() { return env_number("PATHLET_MAX_INFLATE_RATIO", 1032.0, 1.0); }
 int max_json_depth() { return int(env_number("PATHLET_MAX_JSON_DEPTH", 128.0, 8.0)); }
+size_t max_json_bytes() { return size_t(env_number("PATHLET_MAX_JSON_BYTES", 64.0 * 1024 * 1024, 4096.0)); }
 double max_coordinate() { return env_number("PATHLET_MAX_COORDINATE", 1e15, 1.0); }
 
 JsonDepth json_nesting_depth(const std::string& text, int limit) {

@@ -18,6 +18,10 @@ double max_inflate_ratio();
 // PATHLET_MAX_JSON_DEPTH (>= 8) changes it; default 128.
 int max_json_depth();
 
+// Largest JSON input file (graphs, camera paths, experiments, viewer scripts) read into
+// memory: PATHLET_MAX_JSON_BYTES (>= 4096) changes it; default 64 MiB. Such files are kilobytes.
+size_t max_json_bytes();
+
 // Largest coordinate magnitude a point may have and still be kept (default 1e15 data units):
 // a finite outlier beyond it would overflow the bounding box to inf. PATHLET_MAX_COORDINATE.
 double max_coordinate();

@@ -296,6 +296,10 @@ TEST(PluginPath, GraphListsPluginFoldersRelativeToItself) {
     ASSERT_EQ(g.plugin_dirs.size(), 1u);
     EXPECT_EQ(g.plugin_dirs[0], link.string());
     EXPECT_FALSE(validate_graph(g, fresh.registry).empty()) << "kit_probe is not on the default path";
+    // The folder is not trusted (a graph file may name any folder): nothing is loaded.
+    EXPECT_THROW(fresh.load_graph_plugins(g), GraphError);
+    EXPECT_EQ(fresh.registry.find("kit_probe"), nullptr);
+    fresh.trust_graph_plugins = true;  // --trust-graph-plugins
     fresh.load_graph_plugins(g);
     EXPECT_TRUE(validate_graph(g, fresh.registry).empty());
 }

@@ -1,8 +1,9 @@
 # pathlet_add_pass(<name> SOURCES a.cpp ... [SHADERS x.frag ...] [TESTS tests/test_x.cpp ...]
 #                  [NO_INSTALL])
 #
-# Builds a pass plugin: a MODULE library named <name>.so whose shaders travel with it in a
-# folder <name>/ beside it (build tree and install tree alike), so the engine finds them.
+# Builds a pass plugin: a MODULE library named pathlet_<name>.so (the host opens only files named
+# so) whose shaders travel with it in a folder pathlet_<name>/ beside it (build tree and install
+# tree alike), so the engine finds them.
 # Used by the built-in passes and, through find_package(pathlet), by out-of-tree plugins.
 # In tree, the plugin and its shaders join pathlet_runtime (what every GL test depends on) and
 # TESTS build as test_<name> (GoogleTest, labelled gl, with the test support library), so a
@@ -18,7 +19,7 @@ function(pathlet_add_pass name)
   add_library(${name} MODULE ${P_SOURCES})
   target_link_libraries(${name} PRIVATE pathlet::pathlet)
   set_target_properties(${name} PROPERTIES
-    PREFIX ""
+    PREFIX "pathlet_"
     LIBRARY_OUTPUT_DIRECTORY ${PATHLET_PASS_OUTPUT_DIR}
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON
@@ -33,14 +34,14 @@ function(pathlet_add_pass name)
     get_filename_component(abs ${shader} ABSOLUTE)
     get_filename_component(fname ${shader} NAME)
     add_custom_command(TARGET ${name} POST_BUILD
-      COMMAND ${CMAKE_COMMAND} -E make_directory ${PATHLET_PASS_OUTPUT_DIR}/${name}
-      COMMAND ${CMAKE_COMMAND} -E copy_if_different ${abs} ${PATHLET_PASS_OUTPUT_DIR}/${name}/${fname})
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${PATHLET_PASS_OUTPUT_DIR}/pathlet_${name}
+      COMMAND ${CMAKE_COMMAND} -E copy_if_different ${abs} ${PATHLET_PASS_OUTPUT_DIR}/pathlet_${name}/${fname})
   endforeach()
   # Shaders edited without a C++ change still get copied.
   if(P_SHADERS)
     add_custom_target(${name}_shaders ALL
-      COMMAND ${CMAKE_COMMAND} -E make_directory ${PATHLET_PASS_OUTPUT_DIR}/${name}
-      COMMAND ${CMAKE_COMMAND} -E copy_if_different ${P_SHADERS} ${PATHLET_PASS_OUTPUT_DIR}/${name}/
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${PATHLET_PASS_OUTPUT_DIR}/pathlet_${name}
+      COMMAND ${CMAKE_COMMAND} -E copy_if_different ${P_SHADERS} ${PATHLET_PASS_OUTPUT_DIR}/pathlet_${name}/
       WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
   endif()
   if(TARGET pathlet_runtime)
@@ -57,10 +58,10 @@ function(pathlet_add_pass name)
   endif()
   install(TARGETS ${name} LIBRARY DESTINATION ${PATHLET_PASS_INSTALL_DIR})
   if(P_SHADERS)
-    install(FILES ${P_SHADERS} DESTINATION ${PATHLET_PASS_INSTALL_DIR}/${name})
+    install(FILES ${P_SHADERS} DESTINATION ${PATHLET_PASS_INSTALL_DIR}/pathlet_${name})
   endif()
   # The pass's README (if any) travels with it: docs next to the plugin.
   if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/README.md)
-    install(FILES ${CMAKE_CURRENT_SOURCE_DIR}/README.md DESTINATION ${PATHLET_PASS_INSTALL_DIR}/${name})
+    install(FILES ${CMAKE_CURRENT_SOURCE_DIR}/README.md DESTINATION ${PATHLET_PASS_INSTALL_DIR}/pathlet_${name})
   endif()
 endfunction()

@@ -1,5 +1,7 @@
 #include <pathlet/pass.hpp>
 
+#include "util/text.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -27,11 +29,7 @@ std::string range_text(const ParamDecl& d) {
     return s.str();
 }
 
-std::string join(const std::vector<std::string>& v) {
-    std::string out;
-    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + v[i];
-    return out;
-}
+using text::join;
 
 // "#rrggbb" -> [r,g,b] in 0..1
 bool parse_hex_color(const std::string& s, json& out) {

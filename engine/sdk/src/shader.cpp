@@ -1,6 +1,6 @@
 #include <pathlet/shader.hpp>
 
-#include "graph/graph_internal.hpp"
+#include "util/text.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -15,10 +15,15 @@ namespace fs = std::filesystem;
 namespace pathlet {
 
 std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs) {
-    if (fs::path(name).is_absolute() && fs::exists(name)) return name;
+    // A shader is a file name looked up on the shader path, never a path: a graph names shaders
+    // (fullscreen.shader), and "/etc/passwd" or "../../secret" must not reach another file.
+    if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+        throw ShaderError("shader name '" + name +
+                          "' refused: a shader is a file name (no '/', not '..') looked up on the shader path");
     for (const auto& d : dirs) {
         fs::path p = fs::path(d) / name;
-        if (fs::exists(p)) return p.string();
+        std::error_code ec;
+        if (fs::is_regular_file(p, ec)) return p.string();
     }
     std::string msg = "shader file '" + name + "' not found; searched:";
     for (const auto& d : dirs) msg += "\n  " + d;
@@ -289,7 +294,7 @@ GLint ShaderProgram::loc(const std::string& uniform) const {
     if (l < 0 && !declares(uniform)) {
         std::vector<std::string> names(declared_.begin(), declared_.end());
         throw ShaderError("program (" + files_ + ") has no uniform '" + uniform + "'" +
-                          graph_detail::did_you_mean(uniform, names) + " (a misspelt name would silently do nothing)");
+                          text::did_you_mean(uniform, names) + " (a misspelt name would silently do nothing)");
     }
     locs_[uniform] = l;
     return l;

@@ -89,7 +89,8 @@ inline std::vector<std::string> whole_exponent(const std::string& name, float va
     return {};
 }
 
-// Finds a file on the search path; throws ShaderError listing the directories searched.
+// Finds a file on the search path; throws ShaderError listing the directories searched. `name`
+// is a file name: one with a '/' (absolute or relative) or ".." is refused.
 std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs);
 
 }  // namespace pathlet

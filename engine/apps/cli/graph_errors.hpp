@@ -1,0 +1,19 @@
+// How a command reports a graph that cannot be run: every diagnostic (FILE:/json/pointer:
+// message), then the plugins that failed to load (often the cause of an unknown pass type).
+#pragma once
+
+#include "graph/graph_model.hpp"
+#include "runtime.hpp"
+
+#include <cstdio>
+
+namespace pathlet::cli {
+
+// Prints the report to stderr; returns 1, the exit status of failed work.
+inline int report_graph_error(const GraphError& e, const Runtime& rt) {
+    for (const auto& d : e.diagnostics) std::fprintf(stderr, "%s\n", d.str().c_str());
+    std::fprintf(stderr, "%s", rt.plugin_problems_note().c_str());
+    return 1;
+}
+
+}  // namespace pathlet::cli
