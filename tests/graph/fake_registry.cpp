@@ -1,5 +1,7 @@
 #include "fake_registry.hpp"
 
+#include <cmath>
+
 namespace pathlet::test {
 
 namespace {
@@ -47,6 +49,10 @@ PassRegistry make() {
     add(PassTypeBuilder("mipgen", "mip chain").input_texture("src", "any", "src").output_texture("dst", "rgba16f", "mips", 0));
     add(PassTypeBuilder("particles", "particle list").output_buffer("list", 0, 16, "16 B per pixel"));
     add(PassTypeBuilder("counter", "counters").output_buffer("counts", 1024, 0, "1 KiB"));
+    add(PassTypeBuilder("volume", "a grid sized by its parameter")
+            .param_int("grid", 8, 1, 64, "cells per side")
+            .output_buffer_sized("cells", [](const json& p) { return size_t(std::pow(p.at("grid").get<int>(), 3)) * 4; },
+                                 "grid^3 floats"));
     add(PassTypeBuilder("draw", "draws a list")
             .input_buffer("list", "list")
             .input_buffer("counts", "counts", true)

@@ -181,6 +181,7 @@ std::string PassTypeInfo::describe() const {
                 if (p.optional) s << ", optional: written only when connected";
             } else {
                 s << "buffer, ";
+                if (p.bytes_from_params) s << "size from the parameters";
                 if (p.bytes) s << p.bytes << " bytes";
                 if (p.bytes_per_pixel) s << p.bytes_per_pixel << " bytes per output pixel";
             }
@@ -200,7 +201,8 @@ std::string md_cell(std::string s) {  // a table cell: no pipes, no newlines
 }
 std::string md_pin_shape(const PinDecl& p) {
     if (p.kind == PinKind::Buffer)
-        return "buffer" + (p.bytes ? ", " + std::to_string(p.bytes) + " B" : std::string()) +
+        return "buffer" + (p.bytes_from_params ? std::string(", sized by parameters") : std::string()) +
+               (p.bytes ? ", " + std::to_string(p.bytes) + " B" : std::string()) +
                (p.bytes_per_pixel ? ", " + std::to_string(p.bytes_per_pixel) + " B/pixel" : std::string());
     std::string s = p.format;
     if (p.mips != 1) s += p.mips == 0 ? ", mips" : ", " + std::to_string(p.mips) + " mips";
@@ -336,6 +338,14 @@ PassTypeBuilder& PassTypeBuilder::output_buffer(const std::string& name, size_t 
     p.bytes_per_pixel = bytes_per_pixel;
     p.doc = doc;
     info_.pins.push_back(p);
+    return *this;
+}
+
+PassTypeBuilder& PassTypeBuilder::output_buffer_sized(const std::string& name,
+                                                      std::function<size_t(const json& params)> bytes,
+                                                      const std::string& doc) {
+    output_buffer(name, 0, 0, doc);
+    info_.pins.back().bytes_from_params = std::move(bytes);
     return *this;
 }
 

@@ -54,6 +54,9 @@ struct PinDecl {
     bool optional = false;       // may stay unconnected; an unconnected optional output gets no
                                  // resource (connected() is false), a required one an implicit one
     std::string doc;
+    // Buffer outputs sized by the pass's resolved parameters (e.g. a volume's grid); takes
+    // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
+    std::function<size_t(const json& params)> bytes_from_params;
 };
 
 class Pass;
@@ -94,6 +97,9 @@ public:
     PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, bool optional = false);
     PassTypeBuilder& output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
                                    const std::string& doc);
+    // A buffer output whose size the pass's parameters decide (`bytes(params)`, resolved values).
+    PassTypeBuilder& output_buffer_sized(const std::string& name, std::function<size_t(const json& params)> bytes,
+                                         const std::string& doc);
 
     // The pass does work outside the graph (writes files): the compiler never culls it.
     PassTypeBuilder& side_effect() {
