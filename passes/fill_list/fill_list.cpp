@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -24,11 +26,14 @@ class FillList : public pathlet::Pass {
 public:
     ~FillList() override {
         if (view_) glDeleteTextures(1, &view_);
+        if (records_view_) glDeleteTextures(1, &records_view_);
         if (fbo_) glDeleteFramebuffers(1, &fbo_);
     }
 
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &lines::program(ctx, {"fill_list.frag"});
+        records_ = ctx.connected("records");
+        prog_ = &lines::program(ctx, {"fill_list.frag"}, {}, records_ ? std::vector<std::string>{"WRITE_RECORDS"}
+                                                                      : std::vector<std::string>{});
         fade_.setup(ctx);
         GLint max_texels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
@@ -90,6 +95,15 @@ private:
             glTextureBuffer(view_, GL_RGBA32UI, b.id);
             viewed_ = b.id;
         }
+        if (records_) {  // one record per node, the same indices
+            pathlet::Buffer r = ctx.grow_buffer("records", b.bytes);
+            if (r.id != records_viewed_) {
+                if (records_view_) glDeleteTextures(1, &records_view_);
+                glCreateTextures(GL_TEXTURE_BUFFER, 1, &records_view_);
+                glTextureBuffer(records_view_, GL_RGBA32UI, r.id);
+                records_viewed_ = r.id;
+            }
+        }
         return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
     }
 
@@ -107,6 +121,7 @@ private:
         GLuint counter = ctx.buffer("counter").id;
         glBindImageTexture(0, ctx.texture("heads").id, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
         glBindImageTexture(1, view_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+        if (records_) glBindImageTexture(2, records_view_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, oit::kCounterBinding, counter);
         prog_->use();
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
@@ -123,8 +138,8 @@ private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
     lines::EndFade fade_;
-    GLuint fbo_ = 0, view_ = 0, viewed_ = 0;
-    bool coverage_ = false;
+    GLuint fbo_ = 0, view_ = 0, viewed_ = 0, records_view_ = 0, records_viewed_ = 0;
+    bool coverage_ = false, records_ = false;
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
 };
@@ -146,7 +161,12 @@ pathlet::PassTypeInfo fill_list_type() {
                         "depth < 1 where any fragment landed (bind it so resolve_list skips empty tiles)", 1, 1.0f, true)
         .output_buffer("nodes", oit::kNodeBytes, 0,
                        "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
-                       "overflow");
+                       "overflow")
+        .output_buffer("records", oit::kNodeBytes, 0,
+                       "per node, what the line kit's volume AO needs (line_volume_ao_pack: normal, tangent, axis, "
+                       "end fade), grown with the nodes: resolve_list shades every fragment by its own AO (bind it "
+                       "to get it)",
+                       /*optional=*/true);
     return b.make<FillList>();
 }
 

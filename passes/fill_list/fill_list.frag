@@ -3,11 +3,16 @@
 // linked list (seed §III.b: take a node index from the counter, swap it into the head, link
 // the old head), with its colour (speed map, colour hook, halo), its opacity faded at both
 // ends of the pathlet (engine/lines/shaders/line_fade.glsl) and by its edge coverage, its linear depth and
-// its line id.
+// its line id; optionally a second record per node with its normal, tangent, axis and end fade,
+// from which resolve_list shades every fragment by its own volume AO.
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 #include "line_fade.glsl"
 #include "oit_list.glsl"
+#ifdef WRITE_RECORDS  // per node, what the kit's volume AO needs (resolve_list shades with it)
+#include "line_volume_ao.glsl"
+layout(binding = 2, rgba32ui) uniform writeonly uimageBuffer u_records;
+#endif
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the kit's hook (default: the colour as it is)
 
@@ -20,10 +25,14 @@ void main() {
     LineFrag f = line_fragment();
     vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
     // Analytic edge coverage: the rim's last pixel is as opaque as the share of it the quad covers.
-    float a = c.a * line_end_fade(f.point) * clamp(0.5 + f.rim_px, 0.0, 1.0);
+    float fade = line_end_fade(f.point);
+    float a = c.a * fade * clamp(0.5 + f.rim_px, 0.0, 1.0);
     if (a < 0.5 / 255.0) discard;  // invisible: no node
     uint i = atomicAdd(oit_count, 1u);
     if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room
     uint next = imageAtomicExchange(u_heads, ivec2(gl_FragCoord.xy), i);
     imageStore(u_nodes, int(i), oit_pack(vec4(line_halo_tint(c.rgb, f), a), f.depth01, next, f.point.line_id));
+#ifdef WRITE_RECORDS
+    imageStore(u_records, int(i), line_volume_ao_pack(f.normal, f.tangent, line_volume_ao_w(f), fade));
+#endif
 }

@@ -15,6 +15,7 @@
 #include "flicker.hpp"
 #include "rt_ao.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +45,28 @@ json read_json(const std::string& path) {
     }
 }
 
+// Keeps the patched resources alive to the end of the frame (outputs without capture).
+void keep(json& g, const Patch& p) {
+    for (const std::string& r : {p.line_id, p.normal_depth, p.ao}) g["outputs"].push_back({{"resource", r}});
+}
+
+// The OIT graph with per-fragment volume AO: resolve_list's front fragment per pixel.
+Patch patch_front_layer(json& g, json& resolve) {
+    Patch p;
+    p.normal_depth = "quality_front_normal_depth";
+    p.line_id = "quality_front_line_id";
+    p.ao = "quality_front_ao";
+    json& outs = resolve["outputs"];
+    outs["front_normal_depth"] = p.normal_depth;
+    outs["front_line_id"] = p.line_id;
+    outs["front_ao"] = p.ao;
+    g["resources"][p.normal_depth] = {{"format", "rgba16f"}};
+    g["resources"][p.line_id] = {{"format", "r32i"}};
+    g["resources"][p.ao] = {{"format", "r16f"}};
+    keep(g, p);
+    return p;
+}
+
 // Binds gbuffer.line_id and the AO that reaches the image, and keeps them (outputs without
 // capture) so the compiler does not cull them.
 Patch patch_graph(json& g) {
@@ -56,7 +79,14 @@ Patch patch_graph(json& g) {
         if (type == "bilateral") bilateral = &pass;
         if ((type == "lineao" || type == "volume_ao") && !ao_pass) ao_pass = &pass;
     }
-    if (!ao_pass) return {"no AO in this graph (no lineao or volume_ao pass)"};
+    if (!ao_pass) {
+        // Every OIT fragment shaded by its own AO (resolve_list with fill_list's records): the
+        // front fragment per pixel, as resolve_list's front outputs give it.
+        for (json& pass : g["passes"])
+            if (pass.value("type", "") == "resolve_list" && pass.contains("inputs") && pass["inputs"].contains("records"))
+                return patch_front_layer(g, pass);
+        return {"no AO in this graph (no lineao or volume_ao pass, no resolve_list with fill_list's records)"};
+    }
     // The G-buffer is whichever line pass writes what the AO pass reads as normal_depth: gbuffer,
     // geometric_fade, fade_core or a fade of yours (every kit G-buffer pass has line_id).
     const json& lin = (*ao_pass)["inputs"];
@@ -83,7 +113,7 @@ Patch patch_graph(json& g) {
     } else {
         p.ao = (*ao_pass)["outputs"]["ao"];
     }
-    for (const std::string& r : {p.line_id, p.normal_depth, p.ao}) g["outputs"].push_back({{"resource", r}});
+    keep(g, p);
     return p;
 }
 
@@ -144,6 +174,19 @@ std::vector<float> reference_ao(const Captured& c, const Camera& cam, const qual
     return out;
 }
 
+// An AO map as grey (1 = white), the background light grey like the error image's.
+void write_ao_image(const std::string& path, const FrameSample& f, const std::vector<float>& ao) {
+    Image img;
+    img.width = f.width;
+    img.height = f.height;
+    img.channels = 4;
+    img.pixels.assign(f.size() * 4, 1.0f);
+    for (size_t i = 0; i < f.size(); ++i)
+        for (int c = 0; c < 3; ++c) img.pixels[i * 4 + c] = f.line_id[i] >= 0 ? std::clamp(ao[i], 0.0f, 1.0f) : 0.9f;
+    ensure_parent_dir(path);
+    write_image(path, img);
+}
+
 void write_error_image(const std::string& path, const FrameSample& f, const std::vector<float>& err) {
     Image img;
     img.width = f.width;
@@ -177,6 +220,8 @@ int run(const std::vector<std::string>& argv) {
                 "ray-traced AO: whether a pixel's own line occludes it (include: issue 13's reference)")
         .option("depth-tolerance", "D", "0.002", "flicker: largest change of linear depth that counts as unchanged")
         .option("out", "DIR", "out/quality", "folder for the per-pixel error image")
+        .flag("images", "also write the last frame's AO and the ray-traced AO as grey images (NAME_ao.png, "
+                        "NAME_reference.png)")
         .multi("set", "NAME=VALUE", "override a graph variable or a pass parameter");
     add_scene_options(a);
     if (!a.parse(argv)) return 0;
@@ -264,6 +309,10 @@ int run(const std::vector<std::string>& argv) {
     const quality::AoError err = quality::measure_ao_error(last.sample, ref);
     const std::string image = out_dir + "/" + name + "_error.png";
     write_error_image(image, last.sample, err.abs_error);
+    if (a.has("images")) {
+        write_ao_image(out_dir + "/" + name + "_ao.png", last.sample, last.sample.ao);
+        write_ao_image(out_dir + "/" + name + "_reference.png", last.sample, ref);
+    }
 
     std::printf("%s: %zu frames %dx%d, t=%.2f..%.2f\n", name.c_str(), frames.size(), opt.size.x, opt.size.y,
                 frames.front().time, last.time);

@@ -20,6 +20,9 @@ layout(location = 3) out int o_line_id;
 #ifdef WRITE_EDGE  // the rim for edge_aa (line_edge in line_common.glsl)
 layout(location = EDGE_LOCATION) out vec4 o_edge;
 #endif
+#ifdef WRITE_TANGENT  // the tube's axis for volume_ao: tangent, eye depth to the axis' quad
+layout(location = TANGENT_LOCATION) out vec4 o_tangent;
+#endif
 
 void main() {
     LineFrag f = line_fragment();
@@ -35,6 +38,9 @@ void main() {
 #endif
 #ifdef WRITE_EDGE
     o_edge = line_edge(f);
+#endif
+#ifdef WRITE_TANGENT
+    o_tangent = vec4(f.tangent, -g_in.pos_view.z - mix(u_depth_range.x, u_depth_range.y, f.depth01));
 #endif
     gl_FragDepth = line_window_depth(f.depth01);
 }

@@ -184,6 +184,7 @@ std::string PassTypeInfo::describe() const {
                 if (p.bytes_from_params) s << "size from the parameters";
                 if (p.bytes) s << p.bytes << " bytes";
                 if (p.bytes_per_pixel) s << p.bytes_per_pixel << " bytes per output pixel";
+                if (p.optional) s << ", optional: written only when connected";
             }
             s << ")\n      " << p.doc << "\n";
         }
@@ -328,8 +329,9 @@ PassTypeBuilder& PassTypeBuilder::input_buffer(const std::string& name, const st
     return *this;
 }
 PassTypeBuilder& PassTypeBuilder::output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
-                                                const std::string& doc) {
+                                                const std::string& doc, bool optional) {
     PinDecl p;
+    p.optional = optional;
     p.name = name;
     p.dir = PinDir::Output;
     p.kind = PinKind::Buffer;

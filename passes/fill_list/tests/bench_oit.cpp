@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
                 size.y, t);
     std::printf("  %-18s %12s %14s %10s %12s %10s\n", "graph", "darkening", "faded pixels", "nodes", "peak/pixel",
                 "overflows");
-    for (const char* name : {"variant2_oit", "variant2_oit_ao"}) {
+    for (const char* name : {"variant2_oit", "variant2_oit_ao", "variant2_oit_vao"}) {
         oit_test::MetricGraph g = oit_test::metric_graph(std::string(PATHLET_SOURCE_DIR) + "/graphs/" + name + ".json", dir);
         RenderOptions opt;
         opt.graph_path = g.path;

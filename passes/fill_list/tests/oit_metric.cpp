@@ -17,7 +17,8 @@ MetricGraph metric_graph(const std::string& shipped_graph, const std::string& sc
     for (auto& p : g["passes"]) {
         if (p["type"] != "resolve_list") continue;
         p["outputs"]["front_alpha"] = m.front_alpha_name;
-        if (p.contains("inputs") && p["inputs"].contains("ao")) {  // lit in the resolve: bind the unlit composite
+        const bool lit = p.contains("inputs") && (p["inputs"].contains("ao") || p["inputs"].contains("records"));
+        if (lit) {  // AO applied in the resolve: bind the unlit composite
             m.unlit_name = "metric_unlit";
             g["resources"][m.unlit_name] = {{"format", "rgba8"}};
             p["outputs"]["unlit"] = m.unlit_name;

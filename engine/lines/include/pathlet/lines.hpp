@@ -48,7 +48,11 @@ int colormap_index(const std::string& name);
 // The shared line parameters: window, line_width, halo, halo_color, halo_depth, colormap,
 // speed_min, speed_max, background, lod. Declared here once for every line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b);
-// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id and edge.
+// `window` and `line_width` alone (the first two), for passes that follow the pathlets or their
+// tubes without drawing them (line_density, volume_ao).
+PassTypeBuilder& declare_window_param(PassTypeBuilder& b);
+PassTypeBuilder& declare_line_width_param(PassTypeBuilder& b);
+// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id, edge, tangent.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
 // A G-buffer line pass type: the shared parameters and the G-buffer outputs; add your own
 // parameters and finish with .make<YourPass>().
@@ -88,6 +92,35 @@ private:
     std::vector<glm::vec4> pathlets_;
     GLuint buffer_ = 0;
     size_t capacity_ = 0;
+};
+
+// Object-space AO from the line-density volume (the line_density pass; GLSL: the installed
+// line_density.glsl and line_volume_ao.glsl, whose line_volume_ao_fragment(LineFrag) gives a
+// fragment its own AO). The volume is a shader storage buffer at kDensityBinding: a header
+// (grid size, origin, voxel size, window) and fixed-point cells (kDensityScale per voxel length).
+constexpr GLuint kDensityBinding = 10;  // LINE_DENSITY_BINDING
+constexpr GLuint kDensityUnit = 6;      // LINE_DENSITY_UNIT: texture unit of the cells
+constexpr double kDensityScale = 65536.0;
+constexpr size_t kDensityHeaderBytes = 48;
+// Parameters of the AO estimate, declared once: reach (line widths), ao_scale, directions, steps.
+PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b);
+// What a pass that evaluates line_volume_ao.glsl keeps: the cells as a 3D texture.
+class VolumeAo {
+public:
+    VolumeAo() = default;
+    VolumeAo(const VolumeAo&) = delete;
+    VolumeAo& operator=(const VolumeAo&) = delete;
+    ~VolumeAo();
+    // Defines that compile the direction and step counts into line_volume_ao.glsl.
+    static std::vector<std::string> defines(const Params& p);
+    // Every frame, with `prog` in use: sets the uniforms (the radius is half the pass's
+    // line_width), binds the volume of input pin `pin` and copies its cells into the texture
+    // at kDensityUnit (a wait for the pass that built it).
+    void bind(PassContext& ctx, const ShaderProgram& prog, const std::string& pin = "density");
+
+private:
+    GLuint texture_ = 0;
+    glm::ivec3 dims_{0};
 };
 
 // The end fade of a pathlet (engine/lines/shaders/line_fade.glsl: float line_end_fade(LinePoint)), shared
@@ -154,6 +187,7 @@ protected:
     Drawer drawer_;
     bool write_id_ = false;
     bool write_edge_ = false;
+    bool write_tangent_ = false;
 };
 
 // A G-buffer line pass whose hook uses the kit's end fade (line_fade.glsl): geometric_fade

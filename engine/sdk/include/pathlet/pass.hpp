@@ -96,7 +96,7 @@ public:
                                     int mips = 1, float scale = 1.0f, bool optional = false);
     PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, bool optional = false);
     PassTypeBuilder& output_buffer(const std::string& name, size_t bytes, size_t bytes_per_pixel,
-                                   const std::string& doc);
+                                   const std::string& doc, bool optional = false);
     // A buffer output whose size the pass's parameters decide (`bytes(params)`, resolved values).
     PassTypeBuilder& output_buffer_sized(const std::string& name, std::function<size_t(const json& params)> bytes,
                                          const std::string& doc);
