@@ -39,6 +39,7 @@ public:
         if (vao_on_) {
             for (const std::string& d : pathlet::lines::VolumeAo::defines(ctx.params())) defines.push_back(d);
             defines.push_back("VOLUME_AO");
+            defines.push_back("VAO_LAYERS " + std::to_string(ctx.params().i("ao_layers")));
         }
         prog_ = &ctx.program({"fullscreen.vert", "resolve_list.frag"}, defines);
         if (!stats_) {
@@ -139,6 +140,9 @@ pathlet::PassTypeInfo resolve_list_type() {
             .param_float("ao_tolerance", 0.004, 0.0, 1.0,
                          "with ao/core connected: a fragment within this linear depth of the core surface gets its "
                          "AO; fragments in front of the core (faded ones) and behind it stay unoccluded")
+            .param_int("ao_layers", 64, 1, 64,
+                       "with records: the composited fragments (front to back) whose own AO is evaluated; those "
+                       "behind take the last one's (2: RMS 2.7/255 at 720p on the phantom, 0.7x the pass)")
             .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
             .input_texture("heads", "r32ui", "per-pixel list heads (fill_list)")
             .input_buffer("nodes", "list nodes (fill_list)")

@@ -102,15 +102,28 @@ void main() {
     vec3 lit = vec3(0.0), unlit = vec3(0.0);
     float alpha = 0.0;
     float front_ao = 1.0;
+#ifdef VOLUME_AO
+    // Each composited fragment's own AO, faded out with the pathlet's end like its opacity
+    // (faded ends stay clean): AO x fade + (1 - fade). The AO is evaluated for the first
+    // VAO_LAYERS fragments, in a loop of its own (llvmpipe runs a loop as long as its longest
+    // lane, and this one is expensive); a fragment behind them takes the last one's AO.
+    float own[VAO_LAYERS];
+    {
+        float a = 0.0;
+        for (int k = 0; k < VAO_LAYERS; ++k) own[k] = 1.0;
+        for (int k = 0; k < min(n, VAO_LAYERS) && a < 0.99; ++k) {
+            own[k] = line_volume_ao_unpacked(gl_FragCoord.xy, dep[k], texelFetch(u_records, int(rec[k])));
+            a += (1.0 - a) * unpackUnorm4x8(col[k]).a;
+        }
+        front_ao = own[0];
+    }
+#endif
     for (int k = 0; k < n && alpha < 0.99; ++k) {
         vec4 c = unpackUnorm4x8(col[k]);
         float w = (1.0 - alpha) * c.a;
 #ifdef VOLUME_AO
-        // Its own AO, faded out with the pathlet's end like its opacity (faded ends stay clean).
-        uvec4 r = texelFetch(u_records, int(rec[k]));
-        float own = line_volume_ao_unpacked(gl_FragCoord.xy, dep[k], r);
-        if (k == 0) front_ao = own;
-        float occlusion = mix(1.0, own, unpackHalf2x16(r.z).y);
+        float fade = unpackHalf2x16(texelFetch(u_records, int(rec[k])).z).y;
+        float occlusion = mix(1.0, own[min(k, VAO_LAYERS - 1)], fade);
 #else
         float occlusion = abs(dep[k] - core) <= u_ao_tolerance ? ao : 1.0;
 #endif
