@@ -174,34 +174,33 @@ std::vector<float> reference_ao(const Captured& c, const Camera& cam, const qual
     return out;
 }
 
-// An AO map as grey (1 = white), the background light grey like the error image's.
-void write_ao_image(const std::string& path, const FrameSample& f, const std::vector<float>& ao) {
-    Image img;
-    img.width = f.width;
-    img.height = f.height;
-    img.channels = 4;
-    img.pixels.assign(f.size() * 4, 1.0f);
-    for (size_t i = 0; i < f.size(); ++i)
-        for (int c = 0; c < 3; ++c) img.pixels[i * 4 + c] = f.line_id[i] >= 0 ? std::clamp(ao[i], 0.0f, 1.0f) : 0.9f;
-    ensure_parent_dir(path);
-    write_image(path, img);
-}
-
-void write_error_image(const std::string& path, const FrameSample& f, const std::vector<float>& err) {
+// A per-pixel map of the frame: colour(i) (RGB) on covered pixels, light grey elsewhere.
+template <class Colour>
+void write_map(const std::string& path, const FrameSample& f, Colour colour) {
     Image img;
     img.width = f.width;
     img.height = f.height;
     img.channels = 4;
     img.pixels.assign(f.size() * 4, 1.0f);
     for (size_t i = 0; i < f.size(); ++i) {
-        const float e = std::min(1.0f, err[i] * 2.0f);  // 0.5 error = full red
-        const bool line = f.line_id[i] >= 0;
-        img.pixels[i * 4 + 0] = line ? 1.0f : 0.9f;
-        img.pixels[i * 4 + 1] = line ? 1.0f - e : 0.9f;
-        img.pixels[i * 4 + 2] = line ? 1.0f - e : 0.9f;
+        const glm::vec3 c = f.line_id[i] >= 0 ? colour(i) : glm::vec3(0.9f);
+        for (int k = 0; k < 3; ++k) img.pixels[i * 4 + k] = c[k];
     }
     ensure_parent_dir(path);
     write_image(path, img);
+}
+
+// The error: white 0, red from 0.5 on.
+void write_error_image(const std::string& path, const FrameSample& f, const std::vector<float>& err) {
+    write_map(path, f, [&](size_t i) {
+        const float e = std::min(1.0f, err[i] * 2.0f);
+        return glm::vec3(1.0f, 1.0f - e, 1.0f - e);
+    });
+}
+
+// An AO map as grey, 1 = white.
+void write_ao_image(const std::string& path, const FrameSample& f, const std::vector<float>& ao) {
+    write_map(path, f, [&](size_t i) { return glm::vec3(std::clamp(ao[i], 0.0f, 1.0f)); });
 }
 
 int run(const std::vector<std::string>& argv) {
