@@ -27,6 +27,7 @@ const glm::ivec2 kSize{192, 144};
 constexpr float kWidth = 0.5f;  // the fixture graph's line width
 
 std::string source(const std::string& rel) { return std::string(PATHLET_SOURCE_DIR) + "/" + rel; }
+Runtime& rt() { return test_runtime({PATHLET_TEST_PLUGIN_DIR}); }  // with the fragment fixture
 const std::string kProbe = "passes/volume_ao/tests/graphs/vao_probe.json";
 
 // Straight lines along x (times 0..10 s unless given), 81 points each. The scenes keep z their
@@ -59,19 +60,12 @@ Frame render(const Scene& scene, std::vector<std::string> sets = {}, double time
     o.size = kSize;
     o.sets = std::move(sets);
     o.time.start = time;
-    Frame f = render_frame(test_runtime(), scene, o, names);
+    Frame f = render_frame(rt(), scene, o, names);
     if (const char* dir = std::getenv("PATHLET_VAO_TEST_DUMP")) {  // to look at the AO
         static int k = 0;
         write_image(std::string(dir) + "/ao_" + std::to_string(k++) + ".png", f["ao"]);
     }
     return f;
-}
-
-size_t pixels_of_line(const Frame& f, int id) {
-    size_t n = 0;
-    for (int y = 0; y < kSize.y; ++y)
-        for (int x = 0; x < kSize.x; ++x) n += int(f["line_id"].at(x, y, 0)) == id;
-    return n;
 }
 
 // Mean AO over the pixels where line `id` is in front.
@@ -147,7 +141,9 @@ TEST_P(IsolatedLine, IsUnoccludedByItself) {
     EXPECT_FALSE(has_nan(f["ao"]));
     for (int y = 0; y < kSize.y; ++y)
         for (int x = 0; x < kSize.x; ++x)
-            if (int(f["line_id"].at(x, y, 0)) < 0) ASSERT_EQ(f["ao"].at(x, y, 0), 1.0f) << x << "," << y;
+            if (int(f["line_id"].at(x, y, 0)) < 0) {
+                ASSERT_EQ(f["ao"].at(x, y, 0), 1.0f) << x << "," << y;
+            }
 }
 
 // Deep in the bed < at its edge < alone, in the order the ray-traced AO gives them and on its
@@ -245,6 +241,26 @@ TEST(VolumeAo, PerFragmentUnderOitMatchesPerPixel) {
     EXPECT_LT(worst, 0.1);
 }
 
+// A line pass's own fragment stage (the kit's line_volume_ao_fragment, as a fade plugin would
+// use it) computes what volume_ao computes from the G-buffer of the same fragments.
+TEST(VolumeAo, KitFragmentFunctionMatchesPerPixel) {
+    const Frame f = render(bundle_scene(), {}, 10.0, {"ao", "line_id", "fragment_ao"});
+    double diff = 0, worst = 0;
+    size_t n = 0;
+    for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) {
+            if (int(f["line_id"].at(x, y, 0)) < 0) {
+                ASSERT_EQ(f["fragment_ao"].at(x, y, 0), 1.0f) << "background at " << x << "," << y;
+                continue;
+            }
+            const double d = std::fabs(double(f["ao"].at(x, y, 0)) - double(f["fragment_ao"].at(x, y, 0)));
+            diff += d, worst = std::max(worst, d), ++n;
+        }
+    ASSERT_GT(n, 1000u);
+    EXPECT_LT(diff / double(n), 0.01);
+    EXPECT_LT(worst, 0.1);
+}
+
 // The graph's picture on the shared test bundle (one golden; the rest are properties).
 TEST(VolumeAo, Variant1VaoGolden) {
     RenderOptions o;
@@ -252,18 +268,19 @@ TEST(VolumeAo, Variant1VaoGolden) {
     o.size = {160, 120};
     o.sets = {"window=0", "line_width=0.15", "overlay=false"};
     o.time.start = 5.0;
-    const Frame f = render_frame(test_runtime(), helix_bundle_scene(), o, {"final"});
+    const Frame f = render_frame(rt(), helix_bundle_scene(), o, {"final"});
     EXPECT_TRUE(matches_golden(f["final"], source("passes/volume_ao/tests/goldens/variant1_vao.png")));
 }
 
 // grid 0 and 4096 (4096^3 voxels) and a negative reach are errors naming the parameter; a grid
 // the cap (2^26 voxels) cannot hold is an error in setup that names the cap.
 TEST(VolumeAo, BadParametersAreClearErrors) {
-    for (const std::string& set : {"grid=0", "grid=4096", "reach=-1", "line_density.grid=0", "volume_ao.reach=-2"}) {
+    for (const char* text : {"grid=0", "grid=4096", "reach=-1", "line_density.grid=0", "volume_ao.reach=-2"}) {
+        const std::string set = text;
         GraphFile g = parse_graph_file(source(kProbe));
         std::vector<Diagnostic> diags;
-        apply_overrides(g, {set}, test_runtime().registry, diags);
-        for (const Diagnostic& d : validate_graph(g, test_runtime().registry)) diags.push_back(d);
+        apply_overrides(g, {set}, rt().registry, diags);
+        for (const Diagnostic& d : validate_graph(g, rt().registry)) diags.push_back(d);
         ASSERT_FALSE(diags.empty()) << set << " was accepted";
         const std::string name = set.substr(set.find('.') == std::string::npos ? 0 : set.find('.') + 1,
                                             set.find('=') - (set.find('.') == std::string::npos ? 0 : set.find('.') + 1));
@@ -286,8 +303,8 @@ TEST(VolumeAo, MemoryIsBoundedByTheCap) {
     auto density_bytes = [](const std::string& set) {
         GraphFile g = parse_graph_file(source(kProbe));
         std::vector<Diagnostic> diags;
-        apply_overrides(g, {set}, test_runtime().registry, diags);
-        const CompiledGraph cg = compile_graph(g, test_runtime().registry, kSize);
+        apply_overrides(g, {set}, rt().registry, diags);
+        const CompiledGraph cg = compile_graph(g, rt().registry, kSize);
         return cg.resources[size_t(cg.find_resource("density"))].bytes;
     };
     EXPECT_EQ(density_bytes("grid=96"), 48u + 4u * 100 * 100 * 100);
