@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -24,11 +26,18 @@ class FillList : public pathlet::Pass {
 public:
     ~FillList() override {
         if (view_) glDeleteTextures(1, &view_);
+        if (records_view_) glDeleteTextures(1, &records_view_);
         if (fbo_) glDeleteFramebuffers(1, &fbo_);
     }
 
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &lines::program(ctx, {"fill_list.frag"}, lines::hooks(ctx), oit::defines());
+        records_ = ctx.connected("records");
+        std::vector<std::string> defines = oit::defines();
+        if (records_) {
+            defines.push_back("WRITE_RECORDS");
+            for (const auto& d : lines::density_defines()) defines.push_back(d);
+        }
+        prog_ = &lines::program(ctx, {"fill_list.frag"}, lines::hooks(ctx), defines);
         GLint max_texels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
         const size_t cap_bytes = size_t(ctx.params().f("max_memory_mb") * 1024.0 * 1024.0);
@@ -89,6 +98,15 @@ private:
             glTextureBuffer(view_, GL_RGBA32UI, b.id);
             viewed_ = b.id;
         }
+        if (records_) {  // one record per node, the same indices
+            pathlet::Buffer r = ctx.grow_buffer("records", b.bytes);
+            if (r.id != records_viewed_) {
+                if (records_view_) glDeleteTextures(1, &records_view_);
+                glCreateTextures(GL_TEXTURE_BUFFER, 1, &records_view_);
+                glTextureBuffer(records_view_, GL_RGBA32UI, r.id);
+                records_viewed_ = r.id;
+            }
+        }
         return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
     }
 
@@ -105,6 +123,7 @@ private:
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         GLuint counter = ctx.buffer("counter").id;
         prog_->bind_image("u_nodes", view_, GL_RGBA32UI, GL_WRITE_ONLY);  // heads: by declaration
+        if (records_) prog_->bind_image("u_records", records_view_, GL_RGBA32UI, GL_WRITE_ONLY);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, oit::kCounterBinding, counter);
         prog_->use();
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
@@ -119,8 +138,8 @@ private:
 
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    GLuint fbo_ = 0, view_ = 0, viewed_ = 0;
-    bool coverage_ = false;
+    GLuint fbo_ = 0, view_ = 0, viewed_ = 0, records_view_ = 0, records_viewed_ = 0;
+    bool coverage_ = false, records_ = false;
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
 };
@@ -142,7 +161,12 @@ pathlet::PassTypeInfo fill_list_type() {
         .output_buffer("nodes",
                        "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
                        "overflow",
-                       {.bytes = oit::kNodeBytes});
+                       {.bytes = oit::kNodeBytes})
+        .output_buffer("records",
+                       "per node, what the line kit's volume AO needs (line_volume_ao_pack: normal, tangent, axis, "
+                       "opacity), grown with the nodes: resolve_list shades every fragment by its own AO (bind it "
+                       "to get it)",
+                       {.bytes = oit::kNodeBytes}, {.optional = true});
     return b.make<FillList>();
 }
 

@@ -3,10 +3,15 @@
 // linked list (seed §III.b: take a node index from the counter, swap it into the head, link
 // the old head), with its colour (speed map, colour hook, halo), the opacity of its colour hook
 // (by default the kit's end fade, fade_opacity.frag) times its edge coverage, its linear depth
-// and its line id.
+// and its line id; optionally a second record per node with its normal, tangent, axis and the
+// hook's opacity, from which resolve_list shades every fragment by its own volume AO.
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 #include "oit_list.glsl"
+#ifdef WRITE_RECORDS  // per node, what the kit's volume AO needs (resolve_list shades with it)
+#include "line_volume_ao.glsl"
+layout(rgba32ui) uniform writeonly uimageBuffer u_records;  // the pass's view of `records`
+#endif
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_hook)
 
@@ -25,4 +30,7 @@ void main() {
     if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room
     uint next = imageAtomicExchange(u_heads, ivec2(gl_FragCoord.xy), i);
     imageStore(u_nodes, int(i), oit_pack(vec4(line_halo_tint(c.rgb, f), a), f.depth01, next, f.point.line_id));
+#ifdef WRITE_RECORDS
+    imageStore(u_records, int(i), line_volume_ao_pack(f.normal, f.tangent, line_volume_ao_w(f), c.a));
+#endif
 }

@@ -6,6 +6,10 @@
 // applied per fragment: only to fragments at the core's depth; faded fragments in front of the
 // core and fragments behind it stay unoccluded.
 #include "oit_list.glsl"
+#ifdef VOLUME_AO  // every fragment shaded by its own AO from fill_list's records (issue 25)
+#include "line_volume_ao.glsl"
+uniform usamplerBuffer u_records;  // the pass's view of fill_list's records
+#endif
 
 #define K_MAX 64
 
@@ -27,6 +31,11 @@ layout(location = UNLIT_LOCATION) out vec4 o_unlit;
 #ifdef FRONT_ALPHA_LOCATION
 layout(location = FRONT_ALPHA_LOCATION) out float o_front_alpha;
 #endif
+#ifdef FRONT_LOCATION  // the nearest fragment as a G-buffer sees it, with its own AO (for quality)
+layout(location = FRONT_LOCATION) out vec4 o_front_normal_depth;
+layout(location = FRONT_LOCATION + 1) out int o_front_line_id;
+layout(location = FRONT_LOCATION + 2) out float o_front_ao;
+#endif
 
 // Order by depth, then line id, then colour: identical keys are identical nodes, so the result
 // never depends on the order the rasteriser appended them.
@@ -45,16 +54,26 @@ void main() {
 #ifdef FRONT_ALPHA_LOCATION
         o_front_alpha = 0.0;
 #endif
+#ifdef FRONT_LOCATION
+        o_front_normal_depth = vec4(0.0, 0.0, 0.0, 1.0);
+        o_front_line_id = -1;
+        o_front_ao = 1.0;
+#endif
         return;
     }
     float dep[K_MAX];
     uint col[K_MAX], lid[K_MAX];
     for (int k = 0; k < K_MAX; ++k) dep[k] = 1.0, col[k] = 0u, lid[k] = 0u;
+#ifdef VOLUME_AO
+    uint rec[K_MAX];  // node index, for its record
+    for (int k = 0; k < K_MAX; ++k) rec[k] = 0u;
+#endif
     int n = 0;
     uint len = 0u;
     const int K = clamp(u_max_fragments, 1, K_MAX);
     while (i != OIT_END && len < 0x1000000u) {  // the bound only guards against a corrupt list
         uvec4 node = texelFetch(u_nodes, int(i));
+        uint self = i;
         ++len;
         i = oit_next(node);
         float d = oit_depth(node);
@@ -65,10 +84,16 @@ void main() {
             dep[j] = dep[j - 1];
             col[j] = col[j - 1];
             lid[j] = lid[j - 1];
+#ifdef VOLUME_AO
+            rec[j] = rec[j - 1];
+#endif
         }
         dep[j] = d;
         col[j] = node.x;
         lid[j] = id;
+#ifdef VOLUME_AO
+        rec[j] = self;
+#endif
     }
     // A plain read first: the peak only grows, so most pixels need no (contended) atomic.
     if (len > peak_nodes) atomicMax(peak_nodes, len);
@@ -77,10 +102,32 @@ void main() {
     float ao = u_use_ao != 0 ? texelFetch(u_ao, p, 0).r : 1.0;
     vec3 lit = vec3(0.0), unlit = vec3(0.0);
     float alpha = 0.0;
+    float front_ao = 1.0;
+#ifdef VOLUME_AO
+    // Each composited fragment's own AO, faded out with its colour hook's opacity (by default
+    // the pathlet's end fade; faded ends stay clean): AO x fade + (1 - fade). The AO is evaluated for the first
+    // VAO_LAYERS fragments, in a loop of its own (llvmpipe runs a loop as long as its longest
+    // lane, and this one is expensive); a fragment behind them takes the last one's AO.
+    float own[VAO_LAYERS];
+    {
+        float a = 0.0;
+        for (int k = 0; k < VAO_LAYERS; ++k) own[k] = 1.0;
+        for (int k = 0; k < min(n, VAO_LAYERS) && a < 0.99; ++k) {
+            own[k] = line_volume_ao_unpacked(gl_FragCoord.xy, dep[k], texelFetch(u_records, int(rec[k])));
+            a += (1.0 - a) * unpackUnorm4x8(col[k]).a;
+        }
+        front_ao = own[0];
+    }
+#endif
     for (int k = 0; k < n && alpha < 0.99; ++k) {
         vec4 c = unpackUnorm4x8(col[k]);
         float w = (1.0 - alpha) * c.a;
+#ifdef VOLUME_AO
+        float fade = unpackHalf2x16(texelFetch(u_records, int(rec[k])).z).y;
+        float occlusion = mix(1.0, own[min(k, VAO_LAYERS - 1)], fade);
+#else
         float occlusion = abs(dep[k] - core) <= u_ao_tolerance ? ao : 1.0;
+#endif
         lit += w * c.rgb * occlusion;
         unlit += w * c.rgb;
         alpha += w;
@@ -93,5 +140,11 @@ void main() {
 #endif
 #ifdef FRONT_ALPHA_LOCATION
     o_front_alpha = n > 0 ? unpackUnorm4x8(col[0]).a : 0.0;
+#endif
+#ifdef FRONT_LOCATION
+    uvec4 fr = texelFetch(u_records, int(rec[0]));
+    o_front_normal_depth = vec4(vao_unocta(unpackSnorm2x16(fr.x)), dep[0]);
+    o_front_line_id = int(lid[0]);
+    o_front_ao = front_ao;
 #endif
 }

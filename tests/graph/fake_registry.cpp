@@ -1,5 +1,7 @@
 #include "fake_registry.hpp"
 
+#include <cmath>
+
 namespace pathlet::test {
 
 namespace {
@@ -47,6 +49,10 @@ PassRegistry make() {
     add(PassTypeBuilder("mipgen", "mip chain").input_texture("src", "any", "src").output_texture("dst", "rgba16f", "mips", {.mips = 0}));
     add(PassTypeBuilder("particles", "particle list").output_buffer("list", "16 B per pixel", {.bytes_per_pixel = 16}));
     add(PassTypeBuilder("counter", "counters").output_buffer("counts", "1 KiB", {.bytes = 1024}));
+    add(PassTypeBuilder("volume", "a grid sized by its parameter")
+            .param_int("grid", 8, 1, 64, "cells per side")
+            .output_buffer("cells", "grid^3 floats",
+                           {.from_params = [](const json& p) { return size_t(std::pow(p.at("grid").get<int>(), 3)) * 4; }}));
     add(PassTypeBuilder("draw", "draws a list")
             .input_buffer("list", "list")
             .input_buffer("counts", "counts", {.optional = true})

@@ -193,6 +193,26 @@ TEST(Compile, BufferSizes) {
     EXPECT_EQ(res(cg, "fixed").bytes, 4096u);
 }
 
+// Issue 25: a buffer whose size the writer's parameters decide (a volume's grid), with the
+// graph's values, its variables and --set; no "bytes" needed in the graph.
+TEST(Compile, BufferSizedByParameters) {
+    const std::string text = R"json({
+      "variables": {"g": {"type": "int", "default": 4, "min": 1, "max": 64}},
+      "passes": [{"name": "v", "type": "volume"}, {"name": "w", "type": "volume", "params": {"grid": "$g"}},
+                 {"name": "d", "type": "draw", "inputs": {"list": "v.cells", "counts": "w.cells"}}],
+      "outputs": ["d.color"]})json";
+    CompiledGraph cg = compile(text);
+    EXPECT_EQ(res(cg, "v.cells").bytes, 8u * 8 * 8 * 4);
+    EXPECT_EQ(res(cg, "w.cells").bytes, 4u * 4 * 4 * 4);
+    GraphFile g = parse(text);
+    std::vector<Diagnostic> diags;
+    apply_overrides(g, {"v.grid=16", "g=2"}, fake_registry(), diags);
+    ASSERT_TRUE(diags.empty());
+    CompiledGraph set = compile_graph(g, fake_registry(), {64, 64});
+    EXPECT_EQ(res(set, "v.cells").bytes, 16u * 16 * 16 * 4);
+    EXPECT_EQ(res(set, "w.cells").bytes, 2u * 2 * 2 * 4);
+}
+
 TEST(Compile, HistoryResources) {
     CompiledGraph cg = compile(R"json({
       "resources": {"taa_out": {"format": "rgba16f", "history": true}},

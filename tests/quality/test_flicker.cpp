@@ -76,3 +76,34 @@ TEST(Flicker, RejectsMismatchedFrames) {
   EXPECT_THROW(measure_flicker(a, b, 0.01f), std::invalid_argument);
   EXPECT_THROW(measure_flicker(std::vector<FrameSample>{a}, 0.01f), std::invalid_argument);
 }
+
+// Issue 25: AO that follows the reference frame by frame has no excess flicker however much it
+// changes; AO that stands still has the reference's whole change as excess.
+TEST(Flicker, AgainstReferenceSeparatesChangeFromNoise) {
+  std::vector<FrameSample> frames;
+  std::vector<std::vector<float>> ref;
+  for (int k = 0; k < 4; ++k) {
+    FrameSample f = band_frame(32, 16);
+    for (size_t i = 0; i < f.size(); ++i)
+      if (f.line_id[i] >= 0) f.ao[i] -= 0.05f * float(k);  // the scene darkens by 0.05 a frame
+    ref.push_back(f.ao);
+    frames.push_back(f);
+  }
+  ReferenceFlicker follows = measure_flicker_against(frames, ref, 0.01f);
+  EXPECT_NEAR(follows.reference_change, 0.05, 1e-6);
+  EXPECT_NEAR(follows.excess, 0.0, 1e-6);
+  EXPECT_NEAR(measure_flicker(frames, 0.01f).ao_flicker, 0.05, 1e-6) << "the plain measure counts the change";
+
+  std::vector<FrameSample> still(4, band_frame(32, 16));
+  EXPECT_NEAR(measure_flicker_against(still, ref, 0.01f).excess, 0.05, 1e-6);
+
+  std::vector<FrameSample> noisy;
+  for (int k = 0; k < 4; ++k) {
+    FrameSample f = with_noise(frames[size_t(k)], 0.02f, unsigned(k + 1));
+    noisy.push_back(f);
+  }
+  const double excess = measure_flicker_against(noisy, ref, 0.01f).excess;
+  EXPECT_GT(excess, 0.01);
+  EXPECT_LT(excess, 0.03);
+  EXPECT_THROW(measure_flicker_against(frames, {ref[0]}, 0.01f), std::invalid_argument);
+}

@@ -74,3 +74,18 @@ TEST(RayTracedAo, ConvergesWithRayCount) {
   // 64x the rays: about 8x less error; demand at least 4x.
   EXPECT_LT(err_many * 4, err_few) << err_few / 16 << " vs " << err_many / 16;
 }
+
+// Issue 25: a point inside its own tube (where the G-buffer's tube depth puts inclined lines) is
+// occluded by that tube's inside unless the tube's line is left out; other lines still count.
+TEST(RayTracedAo, LeavesTheOwnLineOut) {
+  std::vector<Tube> tubes = two_tubes();
+  tubes[0].id = 3;
+  tubes[1].id = 4;
+  tubes.push_back(Tube{{{-kLen, 0.0f, 0.0f}, {kLen, 0.0f, 0.0f}}, kR, 5});  // the point's own line
+  RayTracedAo rt(tubes);
+  const glm::vec3 inside{0.0f, 0.0f, 0.5f * kR}, n{0, 0, 1};
+  EXPECT_EQ(rt.ambient(inside, n, 4096, 50.0f), 0.0f) << "every ray meets the own tube's inside";
+  const float without_own = rt.ambient(inside, n, 1 << 15, 50.0f, 1, 5);
+  EXPECT_NEAR(without_own, closed_form_ambient(), 0.02) << "the two other tubes alone";
+  EXPECT_LT(rt.ambient(inside, n, 1 << 15, 50.0f, 1, 3), 0.05f) << "leaving another line out keeps the own tube";
+}

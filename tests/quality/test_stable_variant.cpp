@@ -12,7 +12,7 @@ struct Measures {
 
 Measures quality(const std::string& graph) {
     const std::string cmd = std::string(PATHLET_CLI) + " quality " + graph +
-                            " --phantom small --size 160x90 --time 2:2.2:0.04 --rays 64 --out " +
+                            " --phantom small --size 160x90 --time 2:2.2:0.04 --rays 64 --flicker-rays 0 --out " +
                             PATHLET_TEST_BINARY_DIR + "/quality_out 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     Measures m;
@@ -40,6 +40,19 @@ TEST(StableVariant, FlickersLessThanVariant1AtNoWorseError) {
     EXPECT_LT(st.flicker, 0.75 * v1.flicker);
     EXPECT_LE(st.mae, v1.mae * 1.05);
     EXPECT_GT(st.correlation, 0.0);
+}
+
+// Issue 25: the object-space AO, per pixel and per OIT fragment (its front layer), is much
+// closer to the ray-traced AO than LineAO on the same frames.
+TEST(VolumeAoVariants, CloserToTheRayTracedAoThanLineAo) {
+    const Measures lineao = quality(std::string(PATHLET_SOURCE_DIR) + "/graphs/variant1_lineao.json");
+    for (const char* g : {"variant1_vao", "variant2_oit_vao"}) {
+        const Measures vao = quality(std::string(PATHLET_SOURCE_DIR) + "/graphs/" + g + ".json");
+        EXPECT_LT(vao.mae, 0.12) << g;
+        EXPECT_LT(vao.mae, 0.6 * lineao.mae) << g;
+        EXPECT_GT(vao.correlation, 0.8) << g;
+        EXPECT_GT(vao.correlation, lineao.correlation + 0.2) << g;
+    }
 }
 
 TEST(StableVariant, IslHasNoAoToMeasure) {

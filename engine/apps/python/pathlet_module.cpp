@@ -408,9 +408,11 @@ py::object run_bench(const BenchArgs& a, const std::optional<SceneRef>& scene) {
 }
 
 py::dict run_quality(const std::string& graph, const std::vector<std::string>& sets, const SceneRef& scene,
-                     const std::string& time, const std::string& size, int rays, float max_distance,
-                     float depth_tolerance, const std::string& work_dir) {
+                     const std::string& time, const std::string& size, int rays, int flicker_rays, bool own_line,
+                     float max_distance, float depth_tolerance, const std::string& work_dir) {
     quality::QualityOptions q;
+    q.flicker_rays = flicker_rays;
+    q.own_line = own_line;
     q.graph_path = graph;
     q.sets = sets;
     q.size = parse_size(size);
@@ -420,6 +422,7 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
     q.depth_tolerance = depth_tolerance;
     q.work_dir = work_dir;
     if (rays < 1) throw std::invalid_argument("rays must be >= 1");
+    if (flicker_rays < 0) throw std::invalid_argument("flicker_rays must be >= 0");
     if (q.time.times().size() < 2) throw std::invalid_argument("time must give at least two frames (A:B:STEP)");
     quality::QualityResult r;
     std::vector<uint8_t> picture;
@@ -440,6 +443,10 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
     d["flicker"] = r.flicker.ao_flicker;
     d["stable_pixels"] = r.flicker.stable_pixels;
     d["geometry_change"] = r.flicker.geometry_change;
+    if (flicker_rays > 0) {
+        d["reference_change"] = r.reference_flicker.reference_change;
+        d["flicker_excess"] = r.reference_flicker.excess;
+    }
     d["mae"] = r.error.mae;
     d["correlation"] = r.error.correlation;
     d["pixels"] = r.error.pixels;
@@ -542,9 +549,10 @@ PYBIND11_MODULE(_pathlet, m) {
         return run_bench(a, s ? std::optional<SceneRef>(*s) : std::nullopt);
     });
     m.def("quality", [](const std::string& graph, const std::vector<std::string>& sets, const std::shared_ptr<Scene>& s,
-                        const std::string& time, const std::string& size, int rays, float max_distance,
-                        float depth_tolerance, const std::string& work_dir) {
-        return run_quality(graph, sets, s, time, size, rays, max_distance, depth_tolerance, work_dir);
+                        const std::string& time, const std::string& size, int rays, int flicker_rays, bool own_line,
+                        float max_distance, float depth_tolerance, const std::string& work_dir) {
+        return run_quality(graph, sets, s, time, size, rays, flicker_rays, own_line, max_distance, depth_tolerance,
+                           work_dir);
     });
     // The files and tables `pathlet bench` writes, from a report (results.json's content).
     m.def("summary_csv", [](const std::string& report) { return cli::bench::summary_csv(json::parse(report)); });

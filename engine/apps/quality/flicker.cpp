@@ -52,4 +52,32 @@ FlickerStats measure_flicker(const std::vector<FrameSample>& frames, float depth
   return total;
 }
 
+ReferenceFlicker measure_flicker_against(const std::vector<FrameSample>& frames,
+                                         const std::vector<std::vector<float>>& reference, float depth_tolerance) {
+  if (frames.size() < 2) throw std::invalid_argument("flicker: needs at least two frames");
+  if (reference.size() != frames.size()) throw std::invalid_argument("flicker: one reference per frame");
+  for (size_t k = 0; k < frames.size(); ++k) {
+    check(frames[k]);
+    if (reference[k].size() != frames[k].size() || frames[k].width != frames[0].width ||
+        frames[k].height != frames[0].height)
+      throw std::invalid_argument("flicker: frames and references differ in size");
+  }
+  ReferenceFlicker r;
+  double change = 0, excess = 0;
+  size_t n = 0;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    const FrameSample &a = frames[k - 1], &b = frames[k];
+    for (size_t i = 0; i < b.size(); ++i) {
+      if (a.line_id[i] < 0 || a.line_id[i] != b.line_id[i] || std::fabs(a.depth[i] - b.depth[i]) > depth_tolerance)
+        continue;
+      const double d_ref = double(reference[k][i]) - double(reference[k - 1][i]);
+      change += std::fabs(d_ref);
+      excess += std::fabs(double(b.ao[i]) - double(a.ao[i]) - d_ref);
+      ++n;
+    }
+  }
+  if (n) r.reference_change = change / double(n), r.excess = excess / double(n);
+  return r;
+}
+
 }  // namespace pathlet::quality

@@ -31,26 +31,55 @@ Patch not_measurable(const std::string& why) {
     return p;
 }
 
-// Binds gbuffer.line_id and the AO that reaches the image, and keeps them (outputs without
-// capture) so the compiler does not cull them.
+// Keeps the patched resources alive to the end of the frame (outputs without capture).
+void keep(json& g, const Patch& p) {
+    for (const std::string& r : {p.line_id, p.normal_depth, p.ao}) g["outputs"].push_back({{"resource", r}});
+}
+
+// The OIT graph with per-fragment volume AO: resolve_list's front fragment per pixel.
+Patch patch_front_layer(json& g, json& resolve) {
+    Patch p;
+    p.normal_depth = "quality_front_normal_depth";
+    p.line_id = "quality_front_line_id";
+    p.ao = "quality_front_ao";
+    json& outs = resolve["outputs"];
+    outs["front_normal_depth"] = p.normal_depth;
+    outs["front_line_id"] = p.line_id;
+    outs["front_ao"] = p.ao;
+    g["resources"][p.normal_depth] = {{"format", "rgba16f"}};
+    g["resources"][p.line_id] = {{"format", "r32i"}};
+    g["resources"][p.ao] = {{"format", "r16f"}};
+    keep(g, p);
+    return p;
+}
+
+// Binds the G-buffer's line_id and the AO that reaches the image, and keeps them (outputs
+// without capture) so the compiler does not cull them.
 Patch patch_graph(json& g) {
     Patch p;
     json* gbuffer = nullptr;
     json* bilateral = nullptr;
-    json* lineao = nullptr;
+    json* ao_pass = nullptr;  // the screen-space (lineao) or object-space (volume_ao) AO per pixel
     for (json& pass : g["passes"]) {
         const std::string type = pass.value("type", "");
         if (type == "bilateral") bilateral = &pass;
-        if (type == "lineao") lineao = &pass;
+        if ((type == "lineao" || type == "volume_ao") && !ao_pass) ao_pass = &pass;
     }
-    if (!lineao) return not_measurable("no AO in this graph (no lineao pass)");
-    // The G-buffer is whichever line pass writes what lineao reads as normal_depth: gbuffer,
+    if (!ao_pass) {
+        // Every OIT fragment shaded by its own AO (resolve_list with fill_list's records): the
+        // front fragment per pixel, as resolve_list's front outputs give it.
+        for (json& pass : g["passes"])
+            if (pass.value("type", "") == "resolve_list" && pass.contains("inputs") && pass["inputs"].contains("records"))
+                return patch_front_layer(g, pass);
+        return not_measurable("no AO in this graph (no lineao or volume_ao pass, no resolve_list with fill_list's records)");
+    }
+    // The G-buffer is whichever line pass writes what the AO pass reads as normal_depth: gbuffer,
     // geometric_fade, fade_core or a fade of yours (every kit G-buffer pass has line_id).
-    const json& lin = (*lineao)["inputs"];
+    const json& lin = (*ao_pass)["inputs"];
     const std::string nd = lin.contains("normal_depth") ? lin["normal_depth"].get<std::string>() : "";
     for (json& pass : g["passes"])
         if (pass.contains("outputs") && pass["outputs"].value("normal_depth", "") == nd && !nd.empty()) gbuffer = &pass;
-    if (!gbuffer) return not_measurable("no G-buffer pass feeding lineao (no line id and depth per pixel to compare frames by)");
+    if (!gbuffer) return not_measurable("no G-buffer pass feeding the AO (no line id and depth per pixel to compare frames by)");
     json& outs = (*gbuffer)["outputs"];
     if (!outs.contains("normal_depth")) return not_measurable("gbuffer's normal_depth is not bound");
     p.normal_depth = outs["normal_depth"];
@@ -68,9 +97,9 @@ Patch patch_graph(json& g) {
         (*bilateral)["outputs"]["ao_smooth"] = p.ao;
         g["resources"][p.ao] = {{"format", "r16f"}};
     } else {
-        p.ao = (*lineao)["outputs"]["ao"];
+        p.ao = (*ao_pass)["outputs"]["ao"];
     }
-    for (const std::string& r : {p.line_id, p.normal_depth, p.ao}) g["outputs"].push_back({{"resource", r}});
+    keep(g, p);
     return p;
 }
 
@@ -96,6 +125,7 @@ std::vector<Tube> visible_tubes(const Pathlines& lines, double t, double window,
     for (const LineRange& r : lines.lines) {
         Tube tube;
         tube.radius = radius;
+        tube.id = int(&r - lines.lines.data());
         for (uint32_t i = r.first; i < r.first + r.count; ++i) {
             const double ti = lines.time[i];
             if (window <= 0 || (ti >= t - window && ti <= t)) tube.points.push_back(lines.position[i]);
@@ -107,8 +137,9 @@ std::vector<Tube> visible_tubes(const Pathlines& lines, double t, double window,
 
 // Ray-traced AO per covered pixel: the pixel's 3D point from its linear depth through the
 // camera (exact inverse of engine/lines/shaders/line_common.glsl), its normal to world space.
+// own_line: whether the pixel's own line may occlude it (QualityOptions::own_line).
 std::vector<float> reference_ao(const Captured& c, const Camera& cam, const RayTracedAo& rt, int rays,
-                                float max_distance, float offset) {
+                                float max_distance, float offset, bool own_line) {
     const FrameSample& f = c.sample;
     std::vector<float> out(f.size(), 1.0f);
     const glm::mat4 inv_view = glm::inverse(cam.view);
@@ -121,27 +152,39 @@ std::vector<float> reference_ao(const Captured& c, const Camera& cam, const RayT
             const glm::vec4 view(nx * eye / cam.proj[0][0], ny * eye / cam.proj[1][1], -eye, 1.0f);
             const glm::vec3 p = glm::vec3(inv_view * view);
             const glm::vec3 n = glm::normalize(glm::mat3(inv_view) * c.normal[i]);
-            out[i] = rt.ambient(p + n * offset, n, rays, max_distance, uint32_t(i + 1));
+            out[i] = rt.ambient(p + n * offset, n, rays, max_distance, uint32_t(i + 1), own_line ? -1 : f.line_id[i]);
         }
     return out;
 }
 
 }  // namespace
 
-Image error_image(const FrameSample& f, const std::vector<float>& err) {
+namespace {
+// A per-pixel map of the frame: colour(i) (RGB) on covered pixels, light grey elsewhere.
+template <class Colour>
+Image map_image(const FrameSample& f, Colour colour) {
     Image img;
     img.width = f.width;
     img.height = f.height;
     img.channels = 4;
     img.pixels.assign(f.size() * 4, 1.0f);
     for (size_t i = 0; i < f.size(); ++i) {
-        const float e = std::min(1.0f, err[i] * 2.0f);  // 0.5 error = full red
-        const bool line = f.line_id[i] >= 0;
-        img.pixels[i * 4 + 0] = line ? 1.0f : 0.9f;
-        img.pixels[i * 4 + 1] = line ? 1.0f - e : 0.9f;
-        img.pixels[i * 4 + 2] = line ? 1.0f - e : 0.9f;
+        const glm::vec3 c = f.line_id[i] >= 0 ? colour(i) : glm::vec3(0.9f);
+        for (int k = 0; k < 3; ++k) img.pixels[i * 4 + k] = c[k];
     }
     return img;
+}
+}  // namespace
+
+Image error_image(const FrameSample& f, const std::vector<float>& err) {
+    return map_image(f, [&](size_t i) {
+        const float e = std::min(1.0f, err[i] * 2.0f);  // 0.5 error = full red
+        return glm::vec3(1.0f, 1.0f - e, 1.0f - e);
+    });
+}
+
+Image ao_image(const FrameSample& f, const std::vector<float>& ao) {
+    return map_image(f, [&](size_t i) { return glm::vec3(std::clamp(ao[i], 0.0f, 1.0f)); });
 }
 
 namespace {
@@ -234,7 +277,17 @@ QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOpti
     RayTracedAo tracer(visible_tubes(scene.lines, last.time, window, 0.5f * width));
     res.reach = q.max_distance * width;
     res.segments = tracer.segments();
-    res.reference = reference_ao(last, cam, tracer, q.rays, res.reach, 0.05f * width);
+    res.reference = reference_ao(last, cam, tracer, q.rays, res.reach, 0.05f * width, q.own_line);
+    // The reference of every frame (fewer rays: the same ones per pixel in every frame, so
+    // what changes is the scene): the change it has itself is not flicker.
+    if (q.flicker_rays > 0) {
+        std::vector<std::vector<float>> refs;
+        for (const Captured& c : frames) {
+            RayTracedAo t(visible_tubes(scene.lines, c.time, window, 0.5f * width));
+            refs.push_back(reference_ao(c, cam, t, q.flicker_rays, res.reach, 0.05f * width, q.own_line));
+        }
+        res.reference_flicker = measure_flicker_against(samples, refs, q.depth_tolerance);
+    }
     res.error = measure_ao_error(last.sample, res.reference);
     res.frames = frames.size();
     res.first_time = frames.front().time;

@@ -1,8 +1,10 @@
 #pragma once
 // `pathlet quality` as a function (also the Python module's pathlet.quality): the graph run
-// with two extra bindings added in memory (the G-buffer's line_id and bilateral's ao_smooth,
-// the AO that reaches the image), read back after every frame; flicker over the frames and
-// the error of the last frame's AO against a ray-traced AO of the visible pathlets.
+// with extra bindings added in memory (the G-buffer's line_id and the AO that reaches the
+// image: bilateral's ao_smooth, lineao's or volume_ao's ao, or resolve_list's front fragment
+// under OIT with per-fragment AO), read back after every frame; flicker over the frames (also
+// against the ray-traced AO's own change) and the error of the last frame's AO against a
+// ray-traced AO of the visible pathlets.
 #include "ao_error.hpp"
 #include "flicker.hpp"
 #include "frame_sample.hpp"
@@ -26,6 +28,12 @@ struct QualityOptions {
     int rays = 256;                 // ray-traced AO: rays per pixel
     float max_distance = 10;        // ray length in line widths
     float depth_tolerance = 0.002f; // flicker: largest change of linear depth that counts as unchanged
+    int flicker_rays = 256;         // ray-traced AO of every frame, for the flicker against its change (0: off)
+    // Whether a pixel's own line occludes it in the ray-traced AO (issue 13's reference). Off:
+    // the G-buffer's point lies inside its own tube wherever the line is inclined to the view
+    // (the kit moves the tube's depth along the view axis, not the normal: 17 % of the
+    // phantom's pixels at t = 9 s), and every ray from there met the tube's inside.
+    bool own_line = false;
     std::string work_dir;           // where the patched copy of the graph lives while it runs
 };
 
@@ -35,6 +43,7 @@ struct QualityResult {
     size_t frames = 0;
     double first_time = 0, last_time = 0;
     FlickerStats flicker;
+    ReferenceFlicker reference_flicker;  // with flicker_rays > 0
     AoError error;                  // of the last frame, abs_error per pixel
     FrameSample last;               // the last frame's AO, line ids and depth
     std::vector<float> reference;   // ray-traced AO of the last frame (1 on background)
@@ -48,5 +57,7 @@ QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOpti
 
 // The per-pixel error as a picture: white 0, red >= 0.5, light grey background.
 Image error_image(const FrameSample& f, const std::vector<float>& abs_error);
+// An AO map (the frame's or the reference) as grey, 1 = white; light grey background.
+Image ao_image(const FrameSample& f, const std::vector<float>& ao);
 
 }  // namespace pathlet::quality

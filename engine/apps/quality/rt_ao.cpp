@@ -17,13 +17,17 @@ RayTracedAo::RayTracedAo(const std::vector<Tube>& tubes) : impl_(std::make_uniqu
   impl_->device = rtcNewDevice("threads=1");  // the measure runs beside other work; stay frugal
   if (!impl_->device) throw std::runtime_error("ray-traced AO: cannot create an Embree device");
   impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   std::vector<float> verts;      // x y z r
   std::vector<uint32_t> index;   // first vertex of each segment
   for (const Tube& t : tubes) {
     if (t.points.size() < 2) continue;
     const uint32_t base = uint32_t(verts.size() / 4);
     for (const glm::vec3& p : t.points) verts.insert(verts.end(), {p.x, p.y, p.z, t.radius});
-    for (uint32_t i = 0; i + 1 < t.points.size(); ++i) index.push_back(base + i);
+    for (uint32_t i = 0; i + 1 < t.points.size(); ++i) {
+      index.push_back(base + i);
+      segment_id_.push_back(t.id);
+    }
   }
   segments_ = index.size();
   if (!index.empty()) {
@@ -65,12 +69,32 @@ static float uniform(uint32_t v) {
   return float(w >> 8) * (1.0f / 16777216.0f);
 }
 
+namespace {
+// The intersection context with what the filter needs (Embree passes the context through).
+struct ExcludeContext {
+  RTCIntersectContext ctx;
+  const std::vector<int>* segment_id;
+  int exclude;
+};
+
+void skip_own_line(const RTCFilterFunctionNArguments* args) {
+  const auto* c = reinterpret_cast<const ExcludeContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    if (prim < c->segment_id->size() && (*c->segment_id)[prim] == c->exclude) args->valid[i] = 0;
+  }
+}
+}  // namespace
+
 float RayTracedAo::ambient(const glm::vec3& p, const glm::vec3& n, int rays, float max_distance,
-                           uint32_t seed) const {
+                           uint32_t seed, int exclude_id) const {
   if (rays <= 0) return 1.0f;
   const glm::vec3 nn = glm::normalize(n);
-  RTCIntersectContext ctx;
+  ExcludeContext ex{{}, &segment_id_, exclude_id};
+  RTCIntersectContext& ctx = ex.ctx;
   rtcInitIntersectContext(&ctx);
+  if (exclude_id >= 0) ctx.filter = skip_own_line;
   int open = 0;
   for (int i = 0; i < rays; ++i) {
     const uint32_t k = seed * 0x9E3779B9u + uint32_t(i) * 2u;

@@ -14,6 +14,7 @@ namespace pathlet::quality {
 struct Tube {
   std::vector<glm::vec3> points;  // polyline, at least two points
   float radius = 0;
+  int id = -1;  // the line it belongs to (ambient() may leave one line out)
 };
 
 class RayTracedAo {
@@ -25,13 +26,15 @@ class RayTracedAo {
 
   // Ambient term at `p` (on a surface with normal `n`, outward) from `rays` cosine-weighted rays
   // no longer than `max_distance`. Deterministic for a given seed.
+  // Rays ignore the tubes whose id is `exclude_id` (the point's own line; -1: none).
   float ambient(const glm::vec3& p, const glm::vec3& n, int rays, float max_distance,
-                uint32_t seed = 1) const;
+                uint32_t seed = 1, int exclude_id = -1) const;
   size_t segments() const { return segments_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  std::vector<int> segment_id_;  // tube id of each segment (Embree primitive)
   size_t segments_ = 0;
 };
 

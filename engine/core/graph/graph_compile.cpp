@@ -155,6 +155,12 @@ CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::iv
         if (first[r] >= 0) used.push_back(int(r));
     std::stable_sort(used.begin(), used.end(), [&](int a, int b) { return first[a] < first[b]; });
     std::vector<int> compiled_index(idx.resources.size(), -1);
+    // Resolved parameters: defaults + graph + variables + --set (buffers may be sized by them).
+    std::vector<json> params(np);
+    for (int p : order) {
+        params[p] = idx.types[p]->default_params();
+        for (const auto& [k, v] : g.passes[p].params.items()) resolve_param(g, *idx.types[p]->param(k), v, params[p][k]);
+    }
     for (int r : used) {
         const ResourceDecl& d = idx.resources[r];
         const PinDecl* pin = idx.writer_pin(r);
@@ -182,6 +188,8 @@ CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::iv
             const size_t pixels = size_t(output_size.x) * size_t(output_size.y);
             if (d.bytes) c.bytes = d.bytes;
             else if (d.bytes_per_pixel) c.bytes = d.bytes_per_pixel * pixels;
+            else if (pin && pin->bytes_from_params && !params[idx.writer(r)].is_null())
+                c.bytes = pin->bytes_from_params(params[idx.writer(r)]);
             else if (pin && pin->bytes) c.bytes = pin->bytes;
             else if (pin) c.bytes = pin->bytes_per_pixel * pixels;
             c.width = c.height = 0;
@@ -197,8 +205,7 @@ CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::iv
         c.name = d.name;
         c.type = idx.types[p];
         c.pointer = d.pointer;
-        c.params = c.type->default_params();
-        for (const auto& [k, v] : d.params.items()) resolve_param(g, *c.type->param(k), v, c.params[k]);
+        c.params = params[p];
         for (const auto& b : inputs[p]) c.bindings[b.pin] = {compiled_index[b.resource], b.prev};
         for (const auto& b : idx.outputs[p]) {
             c.bindings[b.pin] = {compiled_index[b.resource], false};

@@ -202,7 +202,7 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
                 if (!err.empty() && at == int(r)) error(res.pointer + "/size", err);
             }
         } else if (!ws.empty() && !res.bytes && !res.bytes_per_pixel && !ws[0].second->decl->bytes &&
-                   !ws[0].second->decl->bytes_per_pixel) {
+                   !ws[0].second->decl->bytes_per_pixel && !ws[0].second->decl->bytes_from_params) {
             error(where, "size of buffer '" + res.name + "' is unknown: add \"bytes\" or \"bytes_per_pixel\"");
         }
     }

@@ -15,10 +15,13 @@ layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_normal_depth;
 layout(location = 2) out float o_zoom;
 #ifdef WRITE_LINE_ID
-layout(location = 3) out int o_line_id;
+layout(location = LINE_ID_LOCATION) out int o_line_id;
 #endif
 #ifdef WRITE_EDGE  // the rim for edge_aa (line_edge in line_common.glsl)
 layout(location = EDGE_LOCATION) out vec4 o_edge;
+#endif
+#ifdef WRITE_TANGENT  // the tube's axis for volume_ao: tangent, eye depth to the axis' quad
+layout(location = TANGENT_LOCATION) out vec4 o_tangent;
 #endif
 
 void main() {
@@ -35,6 +38,9 @@ void main() {
 #endif
 #ifdef WRITE_EDGE
     o_edge = line_edge(f);
+#endif
+#ifdef WRITE_TANGENT
+    o_tangent = vec4(f.tangent, -g_in.pos_view.z - mix(u_depth_range.x, u_depth_range.y, f.depth01));
 #endif
     gl_FragDepth = line_window_depth(f.depth01);
 }

@@ -2,34 +2,55 @@
 // through the pass's hooks into LineAO's inputs.
 #include <pathlet/lines.hpp>
 
+#include <algorithm>
+
 namespace pathlet::lines {
 
+namespace {
+// The optional outputs, in attachment order after color, normal_depth and zoom, with their
+// background values (the contract with lineao and edge_aa: line id -1, edge alpha 0 = no line).
+struct OptionalTarget {
+    const char* pin;
+    const char* macro;  // WRITE_<macro> and <macro>_LOCATION in line_gbuffer.frag
+    glm::vec4 clear;
+    bool integer;
+};
+const OptionalTarget kOptional[] = {
+    {"line_id", "LINE_ID", glm::vec4(-1, 0, 0, 0), true},
+    {"edge", "EDGE", glm::vec4(0.5f, 0.5f, 1.0f, 0.0f), false},
+    {"tangent", "TANGENT", glm::vec4(0.0f), false},
+};
+}  // namespace
+
 void GBufferPass::setup(PassContext& ctx) {
-    write_id_ = ctx.connected("line_id");  // an optional output: written only when a graph binds it
+    // Optional outputs are written only when a graph binds them; each gets the next location.
+    targets_ = {"color", "normal_depth", "zoom"};
     std::vector<std::string> defines;
-    if (write_id_) defines.push_back("WRITE_LINE_ID");
-    write_edge_ = ctx.connected("edge");
-    if (write_edge_) {
-        defines.push_back("WRITE_EDGE");
-        defines.push_back("EDGE_LOCATION " + std::to_string(write_id_ ? 4 : 3));
-    }
+    for (const OptionalTarget& t : kOptional)
+        if (ctx.connected(t.pin)) {
+            defines.push_back(std::string("WRITE_") + t.macro);
+            defines.push_back(std::string(t.macro) + "_LOCATION " + std::to_string(targets_.size()));
+            targets_.push_back(t.pin);
+        }
     prog_ = &program(ctx, {"line_gbuffer.frag"}, hooks(ctx), defines);
 }
 
 void GBufferPass::execute(PassContext& ctx) {
-    std::vector<std::string> targets{"color", "normal_depth", "zoom"};
-    if (write_id_) targets.push_back("line_id");
-    if (write_edge_) targets.push_back("edge");
-    ctx.bind_framebuffer(targets, "depth");
+    ctx.bind_framebuffer(targets_, "depth");
 
     // Background values are part of the contract with lineao: colour alpha 0, normal 0,
-    // depth 1, zoom 0, line id -1.
+    // depth 1, zoom 0.
     glm::vec3 bg = ctx.params().v3("background");
     clear_color(0, glm::vec4(bg, 0.0f));
     clear_color(1, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     clear_color(2, glm::vec4(0.0f));
-    if (write_id_) clear_color_int(3, glm::ivec4(-1, 0, 0, 0));
-    if (write_edge_) clear_color(write_id_ ? 4 : 3, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));  // alpha 0: no line
+    for (const OptionalTarget& t : kOptional) {
+        const auto at = std::find(targets_.begin(), targets_.end(), t.pin);
+        if (at == targets_.end()) continue;
+        const int i = int(at - targets_.begin());
+        if (t.integer) clear_color_int(i, glm::ivec4(t.clear));
+        else clear_color(i, t.clear);
+    }
     clear_depth(1.0f);
 
     prog_->use();

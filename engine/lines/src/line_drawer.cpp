@@ -114,11 +114,11 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     const Camera& cam = ctx.camera();
     const GpuScene& scene = ctx.scene();
     const float window = p.f("window");
-    const bool windowed = window > 0.0f && !scene.cpu().lines.timeless;  // streamlines: whole
-    const double t = ctx.time();
+    const TimeWindow tw = time_window(scene, window, ctx.time());
+    const bool windowed = tw.windowed;
     // CPU sub-ranges per line: far cheaper on llvmpipe than culling in the GS or the FS.
-    scene.ranges(windowed ? t - window : 0.0, windowed ? t : 0.0, ranges_);
-    scene.pathlets(windowed ? t - window : 0.0, windowed ? t : 0.0, pathlets_);
+    scene.ranges(tw.t0, tw.t1, ranges_);
+    scene.pathlets(tw.t0, tw.t1, pathlets_);
     if (pathlets_.empty()) pathlets_.push_back(glm::vec4(0.0f));  // a buffer of size 0 cannot be bound
     upload(buffer_, capacity_, pathlets_.data(), pathlets_.size() * sizeof(glm::vec4));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPathletBinding, buffer_);
@@ -136,7 +136,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     float smin = p.f("speed_min") > 0.0f ? p.f("speed_min") : scene.speed_min();
     float smax = p.f("speed_max") > 0.0f ? p.f("speed_max") : scene.speed_max();
     if (!(smax > smin)) smax = smin + 1.0f;
-    width_ = scene.line_width(p.f("line_width"), p.f("width_factor"));
+    width_ = line_width(ctx);
     scene.note_line_width(width_);
     const float typical_window = windowed ? window : 0.0f;  // streamlines (timeless) are drawn whole
     if (typical_window != typical_window_) {  // a median over the scene's points: when the window changes
@@ -145,7 +145,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     }
     const KitBlock block{cam.view,
                          cam.proj,
-                         glm::vec2(float(t) - window, float(t)),
+                         glm::vec2(float(ctx.time()) - window, float(ctx.time())),
                          glm::vec2(cam.near_plane, cam.far_plane),
                          glm::vec2(smin, smax),
                          windowed ? 1 : 0,

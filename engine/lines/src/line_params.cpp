@@ -15,17 +15,33 @@ int colormap_index(const std::string& name) {
     return int(std::find(n.begin(), n.end(), name) - n.begin()) % int(n.size());
 }
 
-PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
+PassTypeBuilder& declare_window_param(PassTypeBuilder& b) {
+    return b.param_float("window", 1.0, -1.0, 1e6,
+                         "pathlet length in seconds: the parts of the lines with times in [t - window, t] are drawn, "
+                         "clipped smoothly inside a segment; <= 0 draws every line whole");
+}
+
+PassTypeBuilder& declare_line_width_params(PassTypeBuilder& b) {
     return b
-        .param_float("window", 1.0, -1.0, 1e6,
-                     "pathlet length in seconds: the parts of the lines with times in [t - window, t] are drawn, "
-                     "clipped smoothly inside a segment; <= 0 draws every line whole")
         .param_float("line_width", 0.0, 0.0, 1e4,
                      "quad width in world units, halo included; 0 = auto: 0.5 % of the data's bounding-box "
                      "diagonal (~3.5 px at 720p when the data fills the frame; 1.1 mm on the phantom)")
         .param_float("width_factor", 1.0, 0.01, 100.0,
                      "the auto width (line_width 0) times this: how a graph widens or thins its lines relative to the "
-                     "data (variant 3 tapers its ends, so it draws them wider); an explicit line_width is used as given")
+                     "data (variant 3 tapers its ends, so it draws them wider); an explicit line_width is used as given");
+}
+
+TimeWindow time_window(const GpuScene& scene, float window, double t) {
+    if (!(window > 0.0f) || scene.cpu().lines.timeless) return {};
+    return {t - double(window), t, true};
+}
+
+float line_width(const PassContext& ctx) {
+    return ctx.scene().line_width(ctx.params().f("line_width"), ctx.params().f("width_factor"));
+}
+
+PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
+    return declare_line_width_params(declare_window_param(b))
         .param_float("halo", 0.2, 0.0, 0.9,
                      "fraction of the width drawn as halo, split between both rims (study: 20 %); 0 = off")
         .param_float("halo_min_px", 1.0, 0.0, 16.0,
@@ -71,6 +87,11 @@ PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b) {
                         "the nearer rim per pixel for edge_aa: rg = 0.5 + 0.5 * outward screen direction, b = distance "
                         "in pixels / 2 (clamped to 1), a = 0.2 + 0.2 * line width in px (clamped to 1), 0 on background (bind it "
                         "to get it)",
+                        {.optional = true})
+        .output_texture("tangent", "rgba16f",
+                        "xyz: view-space unit tangent of the front line, w: eye depth from the pixel's point (normal_depth's "
+                        "w) back to the quad through the line's axis, world units; 0 on background: with normal_depth "
+                        "they give the tube's axis (volume_ao; bind it to get it)",
                         {.optional = true});
 }
 

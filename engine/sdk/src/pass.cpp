@@ -182,8 +182,10 @@ std::string PassTypeInfo::describe() const {
                 if (p.optional) s << ", optional: written only when connected";
             } else {
                 s << "buffer, ";
+                if (p.bytes_from_params) s << "size from the parameters";
                 if (p.bytes) s << p.bytes << " bytes";
                 if (p.bytes_per_pixel) s << p.bytes_per_pixel << " bytes per output pixel";
+                if (p.optional) s << ", optional: written only when connected";
             }
             s << ")\n      " << p.doc << "\n";
         }
@@ -210,7 +212,8 @@ std::string md_cell(std::string s) {  // a table cell: no pipes, no newlines
 }
 std::string md_pin_shape(const PinDecl& p) {
     if (p.kind == PinKind::Buffer)
-        return "buffer" + (p.bytes ? ", " + std::to_string(p.bytes) + " B" : std::string()) +
+        return "buffer" + (p.bytes_from_params ? std::string(", sized by parameters") : std::string()) +
+               (p.bytes ? ", " + std::to_string(p.bytes) + " B" : std::string()) +
                (p.bytes_per_pixel ? ", " + std::to_string(p.bytes_per_pixel) + " B/pixel" : std::string());
     std::string s = p.format;
     if (p.mips != 1) s += p.mips == 0 ? ", mips" : ", " + std::to_string(p.mips) + " mips";
@@ -369,10 +372,12 @@ PassTypeBuilder& PassTypeBuilder::input_buffer(const std::string& name, const st
     info_.pins.push_back(make_pin(name, PinDir::Input, PinKind::Buffer, "", doc, o));
     return *this;
 }
-PassTypeBuilder& PassTypeBuilder::output_buffer(const std::string& name, const std::string& doc, BufferSize size) {
-    PinDecl p = make_pin(name, PinDir::Output, PinKind::Buffer, "", doc, {});
+PassTypeBuilder& PassTypeBuilder::output_buffer(const std::string& name, const std::string& doc, BufferSize size,
+                                                PinOptions o) {
+    PinDecl p = make_pin(name, PinDir::Output, PinKind::Buffer, "", doc, o);
     p.bytes = size.bytes;
     p.bytes_per_pixel = size.bytes_per_pixel;
+    p.bytes_from_params = std::move(size.from_params);
     info_.pins.push_back(p);
     return *this;
 }

@@ -22,9 +22,9 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(dir);
     std::printf("variant 2 artefact, study phantom (%zu lines), %dx%d, t = %.2f s\n", scene.lines.line_count(), size.x,
                 size.y, t);
-    std::printf("  %-18s %12s %14s %10s %12s %10s\n", "graph", "darkening", "faded pixels", "nodes", "peak/pixel",
-                "overflows");
-    for (const char* name : {"variant2_oit", "variant2_oit_ao"}) {
+    std::printf("  %-18s %12s %14s %16s %10s %12s %10s\n", "graph", "darkening", "faded pixels", "(opaque front)",
+                "nodes", "peak/pixel", "overflows");
+    for (const char* name : {"variant2_oit", "variant2_oit_ao", "variant2_oit_vao"}) {
         oit_test::MetricGraph g = oit_test::metric_graph(std::string(PATHLET_SOURCE_DIR) + "/graphs/" + name + ".json", dir);
         RenderOptions opt;
         opt.graph_path = g.path;
@@ -32,8 +32,9 @@ int main(int argc, char** argv) {
         opt.time.start = t;
         Frame f = render_frame(test_runtime(), scene, opt, {g.final_name, g.unlit_name, g.front_alpha_name});
         oit_test::Artefact a = oit_test::measure_artefact(f, g);
-        std::printf("  %-18s %9.1f/255 %14zu %10.0f %12.0f %10.0f\n", name, 255.0 * a.darkening, a.pixels,
-                    f.stats["nodes"], f.stats["peak_nodes_per_pixel"], f.stats["overflow_events_total"]);
+        std::printf("  %-18s %9.1f/255 %14zu %12.1f/255 %10.0f %12.0f %10.0f\n", name, 255.0 * a.darkening, a.pixels,
+                    255.0 * a.opaque_darkening, f.stats["nodes"], f.stats["peak_nodes_per_pixel"],
+                    f.stats["overflow_events_total"]);
     }
     std::filesystem::remove_all(dir);
     return 0;

@@ -17,7 +17,8 @@ MetricGraph metric_graph(const std::string& shipped_graph, const std::string& sc
     for (auto& p : g["passes"]) {
         if (p["type"] != "resolve_list") continue;
         p["outputs"]["front_alpha"] = m.front_alpha_name;
-        if (p.contains("inputs") && p["inputs"].contains("ao")) {  // lit in the resolve: bind the unlit composite
+        const bool lit = p.contains("inputs") && (p["inputs"].contains("ao") || p["inputs"].contains("records"));
+        if (lit) {  // AO applied in the resolve: bind the unlit composite
             m.unlit_name = "metric_unlit";
             g["resources"][m.unlit_name] = {{"format", "rgba8"}};
             p["outputs"]["unlit"] = m.unlit_name;
@@ -46,15 +47,18 @@ double luma(const Image& img, int x, int y) {
 Artefact measure_artefact(const Frame& f, const MetricGraph& g) {
     const Image &fin = f[g.final_name], &unlit = f[g.unlit_name], &front = f[g.front_alpha_name];
     Artefact a;
-    double sum = 0;
+    double sum = 0, opaque = 0;
+    size_t opaque_pixels = 0;
     for (int y = 0; y < fin.height; ++y)
         for (int x = 0; x < fin.width; ++x) {
             float fa = front.at(x, y, 0);
+            if (fa >= 0.5f) opaque += luma(unlit, x, y) - luma(fin, x, y), ++opaque_pixels;
             if (!(fa > 0.0f && fa < 0.5f)) continue;
             sum += luma(unlit, x, y) - luma(fin, x, y);
             ++a.pixels;
         }
     a.darkening = a.pixels ? sum / double(a.pixels) : 0.0;
+    a.opaque_darkening = opaque_pixels ? opaque / double(opaque_pixels) : 0.0;
     return a;
 }
 

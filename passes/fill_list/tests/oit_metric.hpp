@@ -19,6 +19,9 @@ MetricGraph metric_graph(const std::string& shipped_graph, const std::string& sc
 struct Artefact {
     double darkening = 0;  // mean luma(unlit) - luma(final) over faded-front pixels, 0..1
     size_t pixels = 0;     // faded-front pixels
+    // The same over pixels whose front fragment is opaque (alpha >= 0.5): how strong the AO is
+    // where it belongs, to read the faded-front figure against.
+    double opaque_darkening = 0;
 };
 Artefact measure_artefact(const Frame& f, const MetricGraph& g);
 

@@ -399,16 +399,19 @@ def run_experiment(path, scene=None, *, out=None, sizes=None, time=None, frames=
 
 # ---- quality ----------------------------------------------------------------------------------
 
-def quality(graph, scene, time="9:9.4:0.04", size=(320, 180), *, rays=256, max_distance=10.0,
-            depth_tolerance=0.002):
+def quality(graph, scene, time="9:9.4:0.04", size=(320, 180), *, rays=256, flicker_rays=256,
+            include_own_line=False, max_distance=10.0, depth_tolerance=0.002):
     """``pathlet quality`` as numbers: flicker (mean |dAO| where the same line stays),
-    geometry_change, mae and correlation against a ray-traced AO of the last frame, and the
-    images error (|error| per pixel), error_image (RGBA, as the command writes it), ao,
-    reference and line_id. A graph without AO gives {"graph", "not_measured": why}."""
+    geometry_change, with flicker_rays > 0 reference_change and flicker_excess (how much the
+    ray-traced AO changes at those pixels, and the AO's change beyond it), mae and correlation
+    against a ray-traced AO of the last frame, and the images error (|error| per pixel),
+    error_image (RGBA, as the command writes it), ao, reference and line_id. A graph without
+    AO gives {"graph", "not_measured": why}."""
     g = _graph(graph)
     with tempfile.TemporaryDirectory(prefix="pathlet_quality_") as work:
         return _core().quality(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), int(rays),
-                               float(max_distance), float(depth_tolerance), work)
+                               int(flicker_rays), bool(include_own_line), float(max_distance),
+                               float(depth_tolerance), work)
 
 
 # ---- the context --------------------------------------------------------------------------------

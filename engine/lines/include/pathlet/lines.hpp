@@ -58,7 +58,21 @@ int colormap_index(const std::string& name);
 // color_hook and width_hook (their defaults for this pass type in `defaults`). Declared here
 // once for every line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults = {});
-// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id and edge.
+// `window` alone, and `line_width` with `width_factor` (the first three of the above), for
+// passes that follow the pathlets or their tubes without drawing them (line_density, volume_ao).
+PassTypeBuilder& declare_window_param(PassTypeBuilder& b);
+PassTypeBuilder& declare_line_width_params(PassTypeBuilder& b);
+// The part of the lines a pass shows at time t: [t - window, t], or every line whole
+// (t0 = t1 = 0, windowed false) when window <= 0 or the data has no time (streamlines).
+struct TimeWindow {
+    double t0 = 0, t1 = 0;
+    bool windowed = false;
+};
+TimeWindow time_window(const GpuScene& scene, float window, double t);
+// The world-space width the kit draws with: line_width, or with 0 the data's auto width times
+// width_factor (the parameters above).
+float line_width(const PassContext& ctx);
+// LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id, edge, tangent.
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
 // A G-buffer line pass type: the shared parameters and the G-buffer outputs; add your own
 // parameters and finish with .make<YourPass>() (.make<GBufferPass>() for a type that only
@@ -133,6 +147,37 @@ private:
 // line length. A fade over a share of it is the same length on screen for every pathlet.
 float typical_pathlet_length(const Scene& scene, float window);
 
+// Object-space AO from the line-density volume (the line_density pass; GLSL: the installed
+// line_density.glsl and line_volume_ao.glsl, whose line_volume_ao_fragment(LineFrag) gives a
+// fragment its own AO). The volume is a shader storage buffer at kDensityBinding: a header
+// (grid size, origin, voxel size, window) and fixed-point cells (kDensityScale per voxel length).
+// Both reach GLSL through density_defines(), so they are said here only.
+constexpr GLuint kDensityBinding = 10;
+constexpr double kDensityScale = 65536.0;
+constexpr size_t kDensityHeaderBytes = 48;
+// LINE_DENSITY_BINDING and LINE_DENSITY_SCALE for line_density.glsl.
+std::vector<std::string> density_defines();
+// Parameters of the AO estimate, declared once: reach (line widths), ao_scale, directions, steps.
+PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b);
+// What a pass that evaluates line_volume_ao.glsl keeps: the cells as a 3D texture.
+class VolumeAo {
+public:
+    VolumeAo() = default;
+    VolumeAo(const VolumeAo&) = delete;
+    VolumeAo& operator=(const VolumeAo&) = delete;
+    ~VolumeAo();
+    // density_defines() and the direction and step counts compiled into line_volume_ao.glsl.
+    static std::vector<std::string> defines(const Params& p);
+    // Every frame, with `prog` in use: sets the uniforms (the radius is half the kit's line
+    // width), binds the volume of input pin `pin` and copies its cells into the texture that
+    // u_density_cells samples (a wait for the pass that built it).
+    void bind(PassContext& ctx, const ShaderProgram& prog, const std::string& pin = "density");
+
+private:
+    GLuint texture_ = 0;
+    glm::ivec3 dims_{0};
+};
+
 // Where the lines can be on screen this frame: the scene's bounding box, widened by the line
 // width, projected with the frame's camera, plus pad_px pixels; {x0, y0, x1, y1} in pixels
 // of the output (GL's bottom-left origin, end exclusive), clamped to it. The whole output when
@@ -176,8 +221,7 @@ protected:
 
     ShaderProgram* prog_ = nullptr;
     Drawer drawer_;
-    bool write_id_ = false;
-    bool write_edge_ = false;
+    std::vector<std::string> targets_;  // the bound colour attachments, in location order
 };
 
 }  // namespace pathlet::lines

@@ -64,10 +64,12 @@ struct PinOptions {
     int mips = 1;           // outputs and internal textures: mip levels; 0 = full chain
     float scale = 1.0f;     // outputs and internal textures: size = scale x output size
 };
-// The size of a buffer output.
+// The size of a buffer output: {.bytes = 1024}, {.bytes_per_pixel = 16}, or decided by the
+// pass's resolved parameters, {.from_params = [](const json& p) { return ...; }} (a volume's grid).
 struct BufferSize {
     size_t bytes = 0;            // fixed size, or ...
-    size_t bytes_per_pixel = 0;  // ... proportional to the output's pixel count
+    size_t bytes_per_pixel = 0;  // ... proportional to the output's pixel count, or ...
+    std::function<size_t(const json& params)> from_params;  // ... from the parameters
 };
 
 struct PinDecl {
@@ -84,6 +86,9 @@ struct PinDecl {
     bool internal = false;       // the pass's own texture (an output no graph may bind): the engine
                                  // allocates and pools it like any transient, the pass uses it by name
     std::string doc;
+    // Buffer outputs sized by the pass's resolved parameters (e.g. a volume's grid); takes
+    // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
+    std::function<size_t(const json& params)> bytes_from_params;
 };
 
 class Pass;
@@ -141,7 +146,9 @@ public:
     PassTypeBuilder& internal_texture(const std::string& name, const std::string& format, const std::string& doc,
                                       PinOptions o = {});
     PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, PinOptions o = {});
-    PassTypeBuilder& output_buffer(const std::string& name, const std::string& doc, BufferSize size);
+    // Buffer outputs: the size (BufferSize), and {.optional = true} for one written only when bound.
+    PassTypeBuilder& output_buffer(const std::string& name, const std::string& doc, BufferSize size,
+                                   PinOptions o = {});
 
     // The pass does work outside the graph (writes files): the compiler never culls it.
     PassTypeBuilder& side_effect() {

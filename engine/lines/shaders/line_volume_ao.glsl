@@ -1,0 +1,158 @@
+// Object-space line AO from the line-density volume (line_density.glsl), for a point on a
+// pathlet's tube: the share of cosine-weighted rays of length u_vao_reach that leave without
+// meeting another tube, estimated from the density the rays pass through. Used per pixel by
+// volume_ao and per fragment by any line pass (line_volume_ao_fragment below, e.g. fill_list's
+// per-layer AO under OIT). The C++ side (pathlet::lines::VolumeAo) sets the uniforms and binds
+// the volume; VAO_DIRECTIONS and VAO_STEPS are compiled in.
+//
+// Per ray, step i of length ds meets an expected a_i = k (pi r / 2) lambda_i ds tube crossings
+// (lambda: pathlet length per volume; pi r / 2: the mean projected width of a tube of radius r
+// per unit length, Cauchy's formula), and lets 1 - min(1, a_i) of the light through: a crossing
+// within one step is opaque for the share of rays that meet it, as a tube is, where exp(-a) would
+// treat it as fog. The line's own tube is taken out: its share of the density near the point, a
+// Gaussian tube around its axis of the splat kernel's width, is subtracted sample by sample.
+#ifndef PATHLET_LINE_VOLUME_AO_GLSL
+#define PATHLET_LINE_VOLUME_AO_GLSL
+
+#include "line_density.glsl"
+
+#ifndef VAO_DIRECTIONS
+#define VAO_DIRECTIONS 8
+#endif
+#ifndef VAO_STEPS
+#define VAO_STEPS 8
+#endif
+
+uniform float u_vao_reach;       // ray length, world units
+uniform float u_vao_scale;       // k: calibration of the crossing rate (see the volume_ao README)
+uniform float u_vao_radius;      // tube radius (half the line width), world units
+uniform mat4 u_vao_inv_view;     // view -> world
+uniform vec2 u_vao_depth_range;  // camera near, far
+uniform vec4 u_vao_proj;         // P[0][0], P[1][1], P[3][0], P[3][1]
+uniform int u_vao_perspective;
+uniform vec2 u_vao_inv_size;     // 1 / output size in pixels
+
+// The splat (trilinear deposit) seen through trilinear sampling is, on average over positions,
+// a kernel of variance h^2 / 3 per axis; a straight line's share of the density at grid
+// distance d (voxels) from its axis is then 3 / (2 pi) exp(-1.5 d^2) voxel lengths per voxel.
+// The subtraction is widened to exp(-1.125 d^2): the kernel changes with where a line crosses
+// the voxels and the G-buffer's depth is half floats, and the narrow one left an isolated line
+// up to 6 % self-occlusion at the phantom's voxel size (1.4 radii).
+const float kVaoOwnPeak = 0.4774648;
+const float kVaoOwnFalloff = 1.125;
+
+vec3 vao_normalize(vec3 v, vec3 fallback) {
+    float l2 = dot(v, v);
+    return l2 > 1e-24 ? v * inversesqrt(l2) : fallback;
+}
+
+// p: the point, n: its unit normal, q: a point on its own line's axis, t: the line's unit
+// tangent; all in world space. Returns 1 (open) .. 0 (occluded).
+float line_volume_ao_world(vec3 p, vec3 n, vec3 q, vec3 t) {
+    float inv_h = 1.0 / density_origin.w;
+    vec3 pg = line_density_grid(p), qg = line_density_grid(q);
+    // Ray frame around the normal, turned with the line (stable as the line moves on screen).
+    vec3 tx = vao_normalize(t - dot(t, n) * n, vao_normalize(cross(n, abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)), n));
+    vec3 ty = cross(n, tx);
+    float ds = u_vao_reach * inv_h / float(VAO_STEPS);              // step in voxels
+    float rate = u_vao_scale * 1.5707963 * u_vao_radius * inv_h * ds;  // crossings per voxel length
+    float open = 0.0;
+    for (int k = 0; k < VAO_DIRECTIONS; ++k) {
+        // Cosine-weighted Fibonacci set: uniform in the projected disc, a golden angle apart.
+        float rr = sqrt((float(k) + 0.5) / float(VAO_DIRECTIONS));
+        float phi = float(k) * 2.3999632;
+        vec3 d = rr * cos(phi) * tx + rr * sin(phi) * ty + sqrt(1.0 - rr * rr) * n;
+        float transmit = 1.0;
+        for (int i = 0; i < VAO_STEPS; ++i) {
+            vec3 x = pg + d * ((float(i) + 0.5) * ds);
+            vec3 rel = x - qg;
+            float along = dot(rel, t);
+            float own = kVaoOwnPeak * exp(-kVaoOwnFalloff * max(dot(rel, rel) - along * along, 0.0));
+            float lambda = max(line_density_at(x) - own, 0.0);
+            transmit *= 1.0 - min(1.0, rate * lambda);
+        }
+        open += transmit;
+    }
+    // The point itself may lie inside another line's tube (pathlets that overlap, or a point the
+    // G-buffer's approximate tube depth puts inside a neighbour): then nothing is open. Its
+    // chance is the other tubes' volume fraction there, pi r^2 lambda (Poisson). The own line
+    // is taken out 1.5 times here, where its share is largest and least certain: an isolated
+    // line must stay open.
+    vec3 rel0 = pg - qg;
+    float along0 = dot(rel0, t);
+    float own0 = kVaoOwnPeak * exp(-kVaoOwnFalloff * max(dot(rel0, rel0) - along0 * along0, 0.0));
+    float others = max(line_density_at(pg) - 1.5 * own0, 0.0);
+    float r_h = u_vao_radius * inv_h;
+    float outside = exp(-3.14159265 * r_h * r_h * others);
+    return outside * open * (1.0 / float(VAO_DIRECTIONS));
+}
+
+// The same from view-space values (the G-buffer's and the kit's fragment space).
+float line_volume_ao_view(vec3 p, vec3 n, vec3 q, vec3 t) {
+    mat3 r = mat3(u_vao_inv_view);
+    return line_volume_ao_world((u_vao_inv_view * vec4(p, 1.0)).xyz, normalize(r * n), (u_vao_inv_view * vec4(q, 1.0)).xyz,
+                                normalize(r * t));
+}
+
+// ---- from what a G-buffer keeps ---------------------------------------------------------
+
+// View-space point of the pixel at normalised device xy `ndc` and eye depth `eye` (along -z).
+vec3 vao_view_point(vec2 ndc, float eye) {
+    if (u_vao_perspective != 0) return vec3(ndc * eye / u_vao_proj.xy, -eye);
+    return vec3((ndc - u_vao_proj.zw) / u_vao_proj.xy, -eye);
+}
+
+// The AO of a pixel's point as the ray-traced reference of `pathlet quality` places it: the
+// point at linear depth depth01 along the pixel's ray, its view-space normal n; the line's
+// axis from its view-space tangent t and w, the eye depth from the point back to the quad
+// through the axis (the kit's tube bulges towards the viewer and halos are pushed back).
+float line_volume_ao_gbuffer(vec2 frag_coord, float depth01, vec3 n, vec3 t, float w) {
+    vec2 ndc = frag_coord * u_vao_inv_size * 2.0 - 1.0;
+    float eye = mix(u_vao_depth_range.x, u_vao_depth_range.y, depth01);
+    vec3 p = vao_view_point(ndc, eye);
+    n = vao_normalize(n, vec3(0.0, 0.0, 1.0));
+    t = vao_normalize(t, vec3(0.0, 1.0, 0.0));
+    vec3 to_viewer = u_vao_perspective != 0 ? vao_normalize(-p, vec3(0.0, 0.0, 1.0)) : vec3(0.0, 0.0, 1.0);
+    // The quad's side as the kit's geometry stage builds it; n = s side + c v gives s.
+    vec3 side = vao_normalize(cross(t, to_viewer), vec3(1.0, 0.0, 0.0));
+    vec3 q = vao_view_point(ndc, eye + w) - dot(n, side) * u_vao_radius * side;
+    return line_volume_ao_view(p, n, q, t);
+}
+
+// Octahedral unit vectors in 32 bits (snorm 16 x 2): a record per OIT fragment.
+vec2 vao_octa(vec3 v) {
+    v /= abs(v.x) + abs(v.y) + abs(v.z);
+    vec2 e = v.xy;
+    if (v.z < 0.0) e = (1.0 - abs(e.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
+    return e;
+}
+vec3 vao_unocta(vec2 e) {
+    vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (v.z < 0.0) v.xy = (1.0 - abs(v.yx)) * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(v);
+}
+
+// What line_volume_ao_gbuffer needs besides the pixel and the depth, packed: normal, tangent,
+// w and a free value (fill_list keeps the end fade there).
+uvec4 line_volume_ao_pack(vec3 n, vec3 t, float w, float extra) {
+    return uvec4(packSnorm2x16(vao_octa(n)), packSnorm2x16(vao_octa(t)), packHalf2x16(vec2(w, extra)), 0u);
+}
+float line_volume_ao_unpacked(vec2 frag_coord, float depth01, uvec4 rec) {
+    vec2 w = unpackHalf2x16(rec.z);
+    return line_volume_ao_gbuffer(frag_coord, depth01, vao_unocta(unpackSnorm2x16(rec.x)), vao_unocta(unpackSnorm2x16(rec.y)),
+                                  w.x);
+}
+
+#ifdef LINE_STAGE_FRAGMENT
+// A kit fragment (include after line_common.glsl): w, the eye depth from its point (linear
+// depth, the halo's push-back included) back to its quad.
+float line_volume_ao_w(LineFrag f) {
+    return -g_in.pos_view.z - mix(u_depth_range.x, u_depth_range.y, f.depth01);
+}
+// The fragment's own AO, exactly what volume_ao computes from a G-buffer of this fragment.
+float line_volume_ao_fragment(LineFrag f) {
+    return line_volume_ao_gbuffer(gl_FragCoord.xy, f.depth01, f.normal, f.tangent, line_volume_ao_w(f));
+}
+#endif
+
+#endif

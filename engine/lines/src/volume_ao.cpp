@@ -1,0 +1,82 @@
+// The C++ side of line_volume_ao.glsl: its parameters, declared once, its uniforms and the
+// 3D texture its density fetches read.
+#include <pathlet/lines.hpp>
+
+#include <glm/matrix.hpp>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace pathlet::lines {
+
+PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b) {
+    return b
+        .param_float("reach", 10.0, 0.0, 1000.0,
+                     "ray length in line widths: occluders farther away do not count (the ray-traced reference's "
+                     "--max-distance, 10)")
+        .param_float("ao_scale", 1.15, 0.0, 10.0,
+                     "k, the calibration of the crossing rate: 1 counts pathlets as randomly oriented tubes; "
+                     "1.15 matches the ray-traced AO on the study phantom (see passes/volume_ao/README.md)")
+        .param_int("directions", 8, 1, 64, "cosine-weighted ray directions per point")
+        .param_int("steps", 8, 1, 64, "density samples per ray");
+}
+
+std::vector<std::string> density_defines() {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%.1f", kDensityScale);
+    return {"LINE_DENSITY_BINDING " + std::to_string(kDensityBinding), std::string("LINE_DENSITY_SCALE ") + scale};
+}
+
+std::vector<std::string> VolumeAo::defines(const Params& p) {
+    std::vector<std::string> d = density_defines();
+    d.push_back("VAO_DIRECTIONS " + std::to_string(p.i("directions")));
+    d.push_back("VAO_STEPS " + std::to_string(p.i("steps")));
+    return d;
+}
+
+VolumeAo::~VolumeAo() {
+    if (texture_) glDeleteTextures(1, &texture_);
+}
+
+void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog, const std::string& pin) {
+    const Params& p = ctx.params();
+    const float width = line_width(ctx);
+    prog.set("u_vao_reach", p.f("reach") * width);
+    prog.set("u_vao_scale", p.f("ao_scale"));
+    prog.set("u_vao_radius", 0.5f * width);
+    const Camera& cam = ctx.camera();
+    prog.set("u_vao_inv_view", glm::inverse(cam.view));
+    prog.set("u_vao_depth_range", glm::vec2(cam.near_plane, cam.far_plane));
+    prog.set("u_vao_proj", glm::vec4(cam.proj[0][0], cam.proj[1][1], cam.proj[3][0], cam.proj[3][1]));
+    prog.set("u_vao_perspective", cam.proj[2][3] < -0.5f ? 1 : 0);
+    prog.set("u_vao_inv_size", 1.0f / glm::vec2(ctx.output_size()));
+    const Buffer volume = ctx.buffer(pin);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDensityBinding, volume.id);
+
+    // The grid's size from the header (written by the builder this frame).
+    glm::ivec4 dims(0);
+    if (volume.bytes >= kDensityHeaderBytes) glGetNamedBufferSubData(volume.id, 0, sizeof dims, &dims);
+    const size_t cells = size_t(std::max(dims.x, 0)) * size_t(std::max(dims.y, 0)) * size_t(std::max(dims.z, 0));
+    if (dims.w != 1 || cells == 0 || kDensityHeaderBytes + 4 * cells > volume.bytes)
+        throw std::runtime_error("input '" + pin + "' holds no line-density volume (connect a line_density output)");
+    if (glm::ivec3(dims) != dims_) {
+        if (texture_) glDeleteTextures(1, &texture_);
+        glCreateTextures(GL_TEXTURE_3D, 1, &texture_);
+        glTextureStorage3D(texture_, 1, GL_R32F, dims.x, dims.y, dims.z);
+        glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+            glTextureParameteri(texture_, wrap, GL_CLAMP_TO_EDGE);
+        dims_ = glm::ivec3(dims);
+    }
+    // Buffer to texture on the GL side: uint read as normalised (value / (2^32 - 1)) float.
+    glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, volume.id);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage3D(texture_, 0, 0, 0, 0, dims.x, dims.y, dims.z, GL_RED, GL_UNSIGNED_INT,
+                        reinterpret_cast<const void*>(kDensityHeaderBytes));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    prog.bind_texture("u_density_cells", texture_);
+}
+
+}  // namespace pathlet::lines
