@@ -25,6 +25,7 @@ public:
         targets_ = {"color"};
         std::vector<std::string> defines = pathlet::oit::defines();
         defines.push_back("RESOLVE_STATS_BINDING " + std::to_string(kStatsBinding));
+        defines.push_back("MAX_FRAGMENTS " + std::to_string(ctx.params().i("max_fragments")));
         for (const char* pin : {"unlit", "front_alpha"})
             if (ctx.connected(pin)) {
                 defines.push_back(std::string(pin == std::string("unlit") ? "UNLIT_LOCATION " : "FRONT_ALPHA_LOCATION ") +

@@ -11,7 +11,9 @@
 uniform usamplerBuffer u_records;  // the pass's view of fill_list's records
 #endif
 
-#define K_MAX 64
+// K, the nearest fragments kept (max_fragments), is compiled in: the arrays are K long, so a
+// pixel pays for the lists the graph asked for, not for the largest one allowed.
+#define K MAX_FRAGMENTS
 
 // The pins, by declaration (u_nodes is the pass's view of the `nodes` buffer):
 layout(r32ui) uniform readonly uimage2D u_heads;
@@ -19,7 +21,6 @@ uniform usamplerBuffer u_nodes;
 uniform sampler2D u_ao;    // smoothed AO of the core (when u_use_ao)
 uniform sampler2D u_core;  // the core's normal + linear depth (w)
 layout(std430, binding = RESOLVE_STATS_BINDING) buffer OitResolveStats { uint peak_nodes; uint truncated_pixels; };
-uniform int u_max_fragments;  // K <= K_MAX
 uniform int u_use_ao;
 uniform float u_ao_tolerance;  // linear depth within which a fragment counts as the core surface
 uniform vec3 u_background;
@@ -61,16 +62,17 @@ void main() {
 #endif
         return;
     }
-    float dep[K_MAX];
-    uint col[K_MAX], lid[K_MAX];
-    for (int k = 0; k < K_MAX; ++k) dep[k] = 1.0, col[k] = 0u, lid[k] = 0u;
+    // Only the first n entries are read; setting the last keeps the compiler from warning (an
+    // unrolled loop over all K cost 5 ms at 720p).
+    float dep[K];
+    uint col[K], lid[K];
+    dep[K - 1] = 1.0, col[K - 1] = 0u, lid[K - 1] = 0u;
 #ifdef VOLUME_AO
-    uint rec[K_MAX];  // node index, for its record
-    for (int k = 0; k < K_MAX; ++k) rec[k] = 0u;
+    uint rec[K];  // node index, for its record
+    rec[K - 1] = 0u;
 #endif
     int n = 0;
     uint len = 0u;
-    const int K = clamp(u_max_fragments, 1, K_MAX);
     while (i != OIT_END && len < 0x1000000u) {  // the bound only guards against a corrupt list
         uvec4 node = texelFetch(u_nodes, int(i));
         uint self = i;
