@@ -99,6 +99,7 @@ def test_arrays_in_go_through_the_importers_repairs(pathlet):
     assert np.linalg.norm(back["velocity"], axis=1).min() > 0, "velocity from differences"
     img = pathlet.render("isl", s, time=3, size=(96, 64), outputs=["final"]).rgba
     assert (img[..., :3].astype(int).sum(-1) != img[0, 0, :3].astype(int).sum()).sum() > 100, "the lines are drawn"
+    pts_ok = pts.copy()
     pts[5] = np.nan
     with pytest.warns(UserWarning, match="NaN|non-finite"):
         assert pathlet.from_arrays(pts, off, times, velocity=back["velocity"]).point_count == 1199
@@ -106,6 +107,12 @@ def test_arrays_in_go_through_the_importers_repairs(pathlet):
         pathlet.from_arrays(pts, off[:-1], times)
     with pytest.raises(ValueError, match=r"times: expected shape \(1200\)"):
         pathlet.from_arrays(pts, off, times[:10])
+    assert s.units["length"] == "" and s.units["velocity"] == "", "unknown unless given"
+    with pytest.warns(UserWarning):
+        mm = pathlet.from_arrays(pts_ok, off, times, units="mm,mm/s")
+    assert mm.units["length"] == "mm" and mm.units["velocity"] == "mm/s", "as --units gives them"
+    with pytest.raises(ValueError, match="at most two units"):
+        pathlet.from_arrays(pts_ok, off, times, units="mm,mm/s,x")
     walled = s.with_wall(vertices=[[0, 0, 0], [1, 0, 0], [0, 1, 0]], triangles=[[0, 1, 2]])
     assert walled.wall_triangles == 1 and s.wall_triangles == 0
     with pytest.raises(ValueError, match="not one of the 3 vertices"):
@@ -161,9 +168,11 @@ def test_experiment_files_run_as_with_the_command(pathlet, root, scene, tmp_path
 
 
 def test_quality_numbers_and_image_are_the_commands(pathlet, cli, scene, tmp_path):
-    args = ["--time", "2:2.08:0.04", "--size", "96x54", "--rays", "16"]
+    args = ["--time", "2:2.08:0.04", "--size", "96x54", "--rays", "16", "--flicker-rays", "8"]
     out = cli("quality", "variant1_lineao", *args, "--out", str(tmp_path), "--phantom", "small").stdout
-    q = pathlet.quality("variant1_lineao", scene, time="2:2.08:0.04", size=(96, 54), rays=16)
+    q = pathlet.quality("variant1_lineao", scene, time="2:2.08:0.04", size=(96, 54), rays=16, flicker_rays=8)
+    assert f"changes by {q['reference_change']:.5f} at those pixels" in out
+    assert f"|dAO - dRT|: {q['flicker_excess']:.5f}" in out
     assert f"mean |dAO| {q['flicker']:.5f} over {q['stable_pixels']} stable pixels" in out
     assert f"MAE {q['mae']:.4f}, correlation {q['correlation']:.3f} over {q['pixels']} px" in out
     assert np.array_equal(q["error_image"], read_png(tmp_path / "variant1_lineao_error.png"))

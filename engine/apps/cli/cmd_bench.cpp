@@ -236,9 +236,34 @@ Plan make_plan(const BenchOptions& o, const std::vector<std::string>& argv) {
 // bench::run_experiment runs this shard's runs (the Python module runs them the same way);
 // here the files are written after each, so an interrupted or failed bench keeps what it
 // finished, and each run's table is printed.
+// A run's line chunks per frame, summed over its culling line passes (lines::Drawer's stats):
+// drawn in phase 1 (visible last frame) and phase 2, hidden by the depth test, outside the
+// frustum. Empty when no pass culls.
+struct ChunkCounts {
+    double phase1 = 0, phase2 = 0, occluded = 0, frustum = 0;
+    bool any = false;
+};
+ChunkCounts chunk_counts(const Profiler& p) {
+    ChunkCounts c;
+    for (const auto& pass : p.passes()) {
+        auto get = [&](const char* name) {
+            auto it = pass.stats.find(name);
+            return it == pass.stats.end() ? 0.0 : it->second;
+        };
+        if (!pass.stats.count("chunks_phase1")) continue;
+        c.any = true;
+        c.phase1 += get("chunks_phase1");
+        c.phase2 += get("chunks_phase2");
+        c.occluded += get("chunks_occluded");
+        c.frustum += get("chunks_frustum_culled");
+    }
+    return c;
+}
+
 struct Finished {
     json results;
     std::vector<std::pair<std::string, Profiler::Stats>> summary;
+    std::vector<ChunkCounts> chunks;  // per summary row
     std::string source;
     size_t done = 0;
 };
@@ -264,6 +289,7 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
                                   std::to_string(run->scene.lines.line_count()) + " lines";
         if (!o.quiet || !p.from_file) std::printf("%s\n", run->profiler.table(title).c_str());
         f.summary.push_back({run->run.label + "  " + run->run.size, run->profiler.frame_ms()});
+        f.chunks.push_back(chunk_counts(run->profiler));
         f.source = run->scene.source;
         f.done = run->done;
         progress.update(f.done, run->run.label);
@@ -276,10 +302,19 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
 // ---- report -----------------------------------------------------------------------------
 int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& baseline) {
     std::printf("summary (%s; %s)\n", f.results.value("gl_renderer", "").c_str(), f.source.c_str());
-    std::printf("  %-40s %10s %10s %10s %8s\n", "run", "median ms", "p5 ms", "p95 ms", "fps");
-    for (const auto& [label, s] : f.summary)
-        std::printf("  %-40s %10.2f %10.2f %10.2f %8.1f\n", label.c_str(), s.median, s.p5, s.p95,
-                    s.median > 0 ? 1000.0 / s.median : 0.0);
+    // Chunks per frame over the culling line passes: drawn in phase 1 + phase 2 / hidden by
+    // depth / outside the frustum (the line kit's culling; cull=false: nothing hidden).
+    std::printf("  %-40s %10s %10s %10s %8s  %s\n", "run", "median ms", "p5 ms", "p95 ms", "fps",
+                "chunks drawn p1+p2 / occluded / frustum-culled");
+    for (size_t i = 0; i < f.summary.size(); ++i) {
+        const auto& [label, s] = f.summary[i];
+        const ChunkCounts& c = f.chunks[i];
+        char chunks[96] = "-";
+        if (c.any)
+            std::snprintf(chunks, sizeof chunks, "%.0f+%.0f / %.0f / %.0f", c.phase1, c.phase2, c.occluded, c.frustum);
+        std::printf("  %-40s %10.2f %10.2f %10.2f %8.1f  %s\n", label.c_str(), s.median, s.p5, s.p95,
+                    s.median > 0 ? 1000.0 / s.median : 0.0, chunks);
+    }
     if (p.from_file) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", p.out_dir.c_str());
     if (o.plots && !write_plots(p.out_dir)) return 1;
     if (!o.report.empty()) std::fprintf(stderr, "wrote %s.csv and %s.json\n", o.report.c_str(), o.report.c_str());

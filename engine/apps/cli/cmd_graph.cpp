@@ -7,12 +7,39 @@
 #include "runtime.hpp"
 
 #include <pathlet/gl.hpp>
+#include <pathlet/gpu_scene.hpp>
+#include <pathlet/line_chunks.hpp>
 #include "util/atomic_file.hpp"
 
 #include <cstdio>
 
 namespace pathlet::cli {
 namespace {
+
+// The memory a data set adds besides the graph's resources: the line points on the GPU and
+// the chunks the line kit culls by (CPU). Per unit without data, measured with it.
+std::string scene_memory_text(const SceneOptions& data) {
+    constexpr double kMiB = 1024.0 * 1024.0;
+    const size_t chunk_bytes = sizeof(LineChunks::Chunk);
+    char buf[512];
+    if (!data.given()) {
+        std::snprintf(buf, sizeof buf,
+                      "data (not in the totals above): line points %zu B each (GPU); line chunks %zu B per %u segments "
+                      "(CPU, for culling); --phantom or --data gives the sizes for a data set\n",
+                      GpuScene::kLineVertexBytes, chunk_bytes, LineChunks::kSegments);
+        return buf;
+    }
+    const Scene scene = data.load(true);
+    LineChunks chunks;
+    chunks.build(scene.lines);
+    std::snprintf(buf, sizeof buf,
+                  "data %s (not in the totals above): %zu lines, %zu points: line points %.2f MiB (GPU), %zu line "
+                  "chunks %.2f MiB (CPU, for culling)\n",
+                  scene.source.c_str(), scene.lines.line_count(), scene.lines.point_count(),
+                  double(scene.lines.point_count() * GpuScene::kLineVertexBytes) / kMiB, chunks.chunks().size(),
+                  double(chunks.bytes()) / kMiB);
+    return buf;
+}
 
 int run(const std::vector<std::string>& argv) {
     Args a("graph", "Compiles a graph for an output size and shows the result: the execution order, culled\n"
@@ -22,6 +49,7 @@ int run(const std::vector<std::string>& argv) {
     glm::ivec2 size{1280, 720};
     std::vector<std::string> sets;
     PluginOptions plugins;
+    SceneOptions data;
     a.positional("GRAPH", graph, "graph file (or the name of a shipped graph, e.g. variant1_lineao)")
         .flag("plan", plan, "print the plan as text (the default)")
         .flag("json", as_json, "print the plan as JSON")
@@ -31,7 +59,9 @@ int run(const std::vector<std::string>& argv) {
     declare_size(a, size, "output size the plan is computed for");
     declare_sets(a, sets);
     plugins.declare(a);
+    data.declare(a);
     a.example("pathlet graph variant1_lineao --plan", "order, lifetimes and memory of the LineAO graph")
+        .example("pathlet graph variant1_lineao --plan --phantom study", "... and the memory of the study phantom's lines")
         .example("pathlet graph graphs/isl.json --dot isl.dot", "graph picture as DOT")
         .example("pathlet graph plugins/example_fade/speed_fade_v1.json --expanded", "a graph that extends variant 1, merged");
     if (!a.parse(argv)) return 0;
@@ -54,8 +84,10 @@ int run(const std::vector<std::string>& argv) {
         }
         if (as_json)
             std::printf("%s\n", plan_to_json(cg).dump(2).c_str());
-        else if (plan || dot.empty())
+        else if (plan || dot.empty()) {
             std::fputs(plan_to_text(cg).c_str(), stdout);
+            std::fputs(scene_memory_text(data).c_str(), stdout);
+        }
         return 0;
     } catch (const GraphError& e) {
         return report_graph_error(e, rt);

@@ -14,6 +14,7 @@
 #include "image_io.hpp"
 #include "io/mesh_io.hpp"
 #include "io/raw_polylines.hpp"
+#include "io/units.hpp"
 #include "measure.hpp"
 #include "renderer.hpp"
 #include "util/output_check.hpp"
@@ -103,7 +104,8 @@ void check_shape(const py::array& a, const char* name, std::vector<py::ssize_t> 
 // Pathlines from NumPy through the importers' own repair step (NaN points dropped, time
 // ordered, velocity from differences when absent), with the warnings it gives.
 py::tuple scene_from_arrays(const Array<float>& points, const Array<int64_t>& offsets, const Array<float>& times,
-                            const std::optional<Array<float>>& velocity, const std::string& source) {
+                            const std::optional<Array<float>>& velocity, const std::string& source,
+                            const std::string& units) {
     check_shape(points, "points", {-1, 3});
     const size_t n = size_t(points.shape(0));
     check_shape(times, "times", {py::ssize_t(n)});
@@ -130,6 +132,7 @@ py::tuple scene_from_arrays(const Array<float>& points, const Array<int64_t>& of
         for (size_t i = 0; i < n; ++i) pl.velocity[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
     }
     for (size_t i = 0; i < lines; ++i) pl.lines.push_back({uint32_t(off[i]), uint32_t(off[i + 1] - off[i])});
+    io::apply_units_option(pl.units, units);  // "" keeps them unknown: the legend says "speed"
     io::LoadReport rep;
     io::repair_pathlines(pl, rep, source);
     pl.check_consistent(source);
@@ -480,6 +483,11 @@ PYBIND11_MODULE(_pathlet, m) {
             const Bounds b = s.bounds();
             return py::make_tuple(py::make_tuple(b.lo.x, b.lo.y, b.lo.z), py::make_tuple(b.hi.x, b.hi.y, b.hi.z));
         })
+        .def_property_readonly("units", [](const Scene& s) {
+            const Units& u = s.lines.units;
+            return py::dict(py::arg("length") = u.length, py::arg("time") = u.time, py::arg("velocity") = u.velocity);
+        })
+        .def_property_readonly("timeless", [](const Scene& s) { return s.lines.timeless; })
         .def_property_readonly("wall_triangles", [](const Scene& s) { return s.mesh ? s.mesh->index.size() / 3 : 0; })
         .def("arrays", &scene_arrays);
 
@@ -489,13 +497,17 @@ PYBIND11_MODULE(_pathlet, m) {
         return std::const_pointer_cast<Scene>(load_scene_source(src));
     });
     m.def("load", [](const std::string& data, const std::string& mesh, const std::string& time_array,
-                     const std::string& velocity_array, double time_step) {
+                     const std::string& velocity_array, double time_step, const std::string& units, bool streamlines,
+                     bool pseudo_time) {
         cli::SceneSource src;
         src.data = data;
         src.mesh = mesh;
         src.time_array = time_array;
         src.velocity_array = velocity_array;
         src.time_step = time_step;
+        src.units = units;
+        src.streamlines = streamlines;
+        src.pseudo_time = pseudo_time;
         return std::const_pointer_cast<Scene>(load_scene_source(src));
     });
     m.def("from_arrays", &scene_from_arrays);

@@ -264,9 +264,12 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
         const float grow = 0.5f * width_ * (width_hooked_ ? GpuScene::kMaxWidthHook : 1.0f);
         const Camera& cam = ctx.camera();
         // Only an opaque depth test hides anything: a pass that keeps every fragment (OIT's
-        // depth ALWAYS) gets the frustum culling alone.
+        // depth ALWAYS), or a window too small to pay for the depth read-back, gets the
+        // frustum culling alone.
         glm::ivec2 size(0);
-        const GLuint depth = depth_func_ == GL_ALWAYS ? 0 : bound_depth(size);
+        const bool occlusion = depth_func_ != GL_ALWAYS &&
+                               ranges_.segments >= size_t(std::max(0, ctx.params().i("cull_min_segments")));
+        const GLuint depth = occlusion ? bound_depth(size) : 0;
         culler_->split(ranges_, scene.chunks(), scene.cpu().lines.position.data(), cam.proj * cam.view, grow, depth != 0);
         draw_ranges(ctx, culler_->phase1(), 0);
         const ChunkCuller::TileDepth none{};

@@ -47,12 +47,15 @@ struct CullRun {
 };
 
 // Every frame of `graph` over [t0, t1], orbiting, with the line pass's culling on or off.
+// min_segments: the pass's cull_min_segments (0: the occlusion test at any size; these scenes
+// are small).
 CullRun render_run(const std::string& graph, const std::string& pass, bool cull, const std::string& resource, double t0,
-               double t1, double orbit, double window = 2.0) {
+               double t1, double orbit, double window = 2.0, int min_segments = 0) {
     RenderOptions o;
     o.graph_path = kGraphs + graph;
     o.size = {192, 128};
-    o.sets = {pass + ".cull=" + std::string(cull ? "true" : "false"), "overlay=false", "line_width=0.3",
+    o.sets = {pass + ".cull=" + std::string(cull ? "true" : "false"),
+              pass + ".cull_min_segments=" + std::to_string(min_segments), "overlay=false", "line_width=0.3",
               "window=" + std::to_string(window)};
     o.time = {t0, t1, 0.5};
     o.orbit_deg_per_s = orbit;
@@ -100,6 +103,16 @@ TEST(Cull, HiddenChunksAreNotDrawnAndThePictureStaysTheSame) {
     EXPECT_GT(on.occluded, 100) << "the front sheet hides the chunks behind it";
     EXPECT_LT(on.segments, 0.5 * off.segments) << "culling draws fewer segments";
     EXPECT_EQ(worst_rms(on, off), 0.0) << "the same picture";
+}
+
+TEST(Cull, ASmallWindowSkipsTheOcclusionTest) {
+    // Fewer data segments than cull_min_segments: frustum culling only (the depth read-back
+    // would cost more than it saves), the same picture.
+    const CullRun small = render_run("variant1_lineao.json", "gbuffer", true, "final", 4, 5, 0, 0.0, 1 << 30);
+    const CullRun off = render_run("variant1_lineao.json", "gbuffer", false, "final", 4, 5, 0, 0.0);
+    EXPECT_EQ(small.occluded, 0) << "no occlusion test below the threshold";
+    EXPECT_EQ(small.segments, off.segments);
+    EXPECT_EQ(worst_rms(small, off), 0.0);
 }
 
 TEST(Cull, WhileTheCameraOrbitsAndTheWindowMovesThePictureStaysTheSame) {

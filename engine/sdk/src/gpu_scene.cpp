@@ -14,7 +14,7 @@ struct LineVertex {
     int32_t line_id;
     float arc;  // arc length from the line's first point
 };
-static_assert(sizeof(LineVertex) == 48);
+static_assert(sizeof(LineVertex) == GpuScene::kLineVertexBytes);
 
 glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
     float l = glm::length(v);

@@ -95,6 +95,8 @@ class Scene:
     speed_range = property(lambda self: self._h.speed_range)
     bounds = property(lambda self: self._h.bounds, doc="((x, y, z) low, (x, y, z) high)")
     wall_triangles = property(lambda self: self._h.wall_triangles)
+    units = property(lambda self: self._h.units, doc="{length, time, velocity}; '' where unknown")
+    timeless = property(lambda self: self._h.timeless, doc="lines without time (streamlines): drawn whole")
 
     def arrays(self):
         """Copies of the data: points (n, 3), offsets (lines + 1), times (n), velocity (n, 3)."""
@@ -121,23 +123,27 @@ def phantom(preset="study"):
     return Scene(_core().phantom(preset))
 
 
-def load(data, mesh=None, *, time_array="", velocity_array="", time_step=0.0):
-    """Pathlines from a file (.vtk, .vtp, .pathlet, text rows) and an optional wall mesh, as
-    ``pathlet render --data DATA --mesh MESH`` loads them. Bad files raise DataError."""
+def load(data, mesh=None, *, time_array="", velocity_array="", time_step=0.0, units="", streamlines=False,
+         pseudo_time=False):
+    """Pathlines from a file (.vtk, .vtp, .pathlet, .trk, .tck, text rows) and an optional wall
+    mesh, as ``pathlet render --data DATA --mesh MESH`` loads them. units: "LENGTH[,VELOCITY]"
+    where the file does not say them (as --units; the speed legend shows them, else "speed");
+    streamlines / pseudo_time as the options of those names. Bad files raise DataError."""
     return Scene(_core().load(os.fspath(data), os.fspath(mesh) if mesh else "", time_array, velocity_array,
-                              float(time_step)))
+                              float(time_step), units, bool(streamlines), bool(pseudo_time)))
 
 
-def from_arrays(points, offsets, times, velocity=None, *, wall=None, source="arrays"):
+def from_arrays(points, offsets, times, velocity=None, *, wall=None, source="arrays", units=""):
     """Pathlines from NumPy arrays: points (n, 3), offsets (lines + 1: where each line starts,
     then n), times (n) and optionally velocity (n, 3; else from differences, as the importers
     do). They go through the importers' repair step (its warnings become Python warnings).
-    wall: a mesh file or (vertices, triangles)."""
+    wall: a mesh file or (vertices, triangles). units: "LENGTH[,VELOCITY]", e.g. "mm" or
+    "m,m/s" (as --units); without them the speed legend says "speed" with no unit."""
     import numpy as np
 
     h, notes = _core().from_arrays(np.asarray(points, np.float32), np.asarray(offsets, np.int64),
                                    np.asarray(times, np.float32),
-                                   None if velocity is None else np.asarray(velocity, np.float32), source)
+                                   None if velocity is None else np.asarray(velocity, np.float32), source, units)
     for n in notes:
         warnings.warn(f"{source}: {n}", stacklevel=2)
     scene = Scene(h)

@@ -87,6 +87,7 @@ public:
     // The widest line width any line pass has drawn this scene with (world units, before the
     // width hook, which is clamped to kMaxWidthHook): lines::screen_rect pads by it, so post
     // passes that skip the border never cut a wide line. Noted by lines::Drawer.
+    static constexpr size_t kLineVertexBytes = 48;  // GPU memory per line point (the vertex buffer)
     static constexpr float kMaxWidthHook = 4.0f;  // line_quad.geom's clamp (u_max_width_hook)
     void note_line_width(float w) const { widest_line_ = std::max(widest_line_, w); }
     float widest_line() const { return widest_line_; }
