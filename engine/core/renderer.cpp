@@ -25,6 +25,11 @@ std::vector<double> TimeRange::times() const {
     return t;
 }
 
+TimeRange default_time_range(const Scene& scene) {
+    if (scene.lines.timeless) return {0, 0, 0.25};
+    return {scene.lines.time_min(), scene.lines.time_max(), 0.25};
+}
+
 TimeRange parse_time_range(const std::string& text) {
     std::vector<double> parts;
     size_t pos = 0;

@@ -23,6 +23,9 @@ struct TimeRange {
 };
 // "t", "a:b" (25 frames per second) or "a:b:step"; throws std::invalid_argument with a hint.
 TimeRange parse_time_range(const std::string& text);
+// What a render without a time shows: the data's whole span in 0.25 s steps, or one frame for
+// lines without time (streamlines are drawn whole: more frames would be the same picture).
+TimeRange default_time_range(const Scene& scene);
 glm::ivec2 parse_size(const std::string& text);  // "1280x720"
 
 struct RenderOptions {

@@ -91,10 +91,7 @@ int run(const std::vector<std::string>& argv) {
     Runtime rt;
     plugins.load(rt);
     Scene scene = data.load(opt.quiet);
-    // Streamlines are drawn whole: one frame, not the same picture over their pseudo-time.
-    opt.time = time ? *time
-                    : scene.lines.timeless ? TimeRange{0, 0, 0.25}
-                                           : TimeRange{scene.lines.time_min(), scene.lines.time_max(), 0.25};
+    opt.time = time ? *time : default_time_range(scene);
     try {
         std::unique_ptr<VideoWriter> video;
         if (!video_path.empty()) {

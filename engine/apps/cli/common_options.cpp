@@ -58,17 +58,11 @@ void SceneOptions::declare(Args& a) {
 }
 
 SceneSource SceneOptions::source() const {
-    const io::LoadOptions o = arrays.load_options();
     SceneSource s;
     s.data = data;
     s.mesh = mesh;
     s.phantom = phantom.value;
-    s.time_array = o.time_array;
-    s.velocity_array = o.velocity_array;
-    s.time_step = o.time_step;
-    s.units = o.units;
-    s.streamlines = o.streamlines;
-    s.pseudo_time = o.pseudo_time;
+    s.load = arrays.load_options();
     return s;
 }
 

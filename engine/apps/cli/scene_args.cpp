@@ -18,17 +18,10 @@ Scene load_scene(const SceneSource& src, bool quiet) {
         FractionProgress bar("phantom '" + src.phantom + "'", quiet);
         scene = phantom::load_or_make_phantom(src.phantom, bar.callback());
         bar.finish(std::to_string(scene.lines.line_count()) + " lines");
-        io::apply_units_option(scene.lines.units, src.units);
+        io::apply_units_option(scene.lines.units, src.load.units);
     } else {
-        io::LoadOptions o;
-        o.time_array = src.time_array;
-        o.velocity_array = src.velocity_array;
-        o.time_step = src.time_step;
-        o.units = src.units;
-        o.streamlines = src.streamlines;
-        o.pseudo_time = src.pseudo_time;
         io::LoadReport rep;
-        scene.lines = io::load_pathlines(src.data, o, &rep);
+        scene.lines = io::load_pathlines(src.data, src.load, &rep);
         scene.source = src.data;
         // Nothing to draw is an error, not a blank picture (pathlet info still shows the numbers).
         if (scene.lines.line_count() == 0) {

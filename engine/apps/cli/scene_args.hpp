@@ -2,6 +2,8 @@
 // SceneOptions), an experiment's data set and the Python module all name their data this way.
 #pragma once
 
+#include "io/pathline_io.hpp"
+
 #include <pathlet/scene.hpp>
 
 #include <string>
@@ -12,11 +14,7 @@ struct SceneSource {
     std::string data;             // pathline file; "" = the built-in phantom
     std::string mesh;             // wall mesh file (optional)
     std::string phantom = "study";
-    std::string time_array, velocity_array;
-    double time_step = 0;         // text rows: seconds between samples (0: 0.01)
-    std::string units;            // LENGTH[,VELOCITY] where the file does not say them (checked)
-    bool streamlines = false;     // VTK lines without time or velocity load as lines drawn whole
-    bool pseudo_time = false;     // lines without time animate along their arc length
+    io::LoadOptions load;         // arrays, time step, units, streamlines (units apply to the phantom too)
 };
 
 // Loads what the source says; unless quiet, prints a one-line summary. Repair warnings go to

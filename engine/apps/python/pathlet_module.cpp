@@ -316,8 +316,7 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
     opt.graph_path = a.graph;
     opt.sets = a.sets;
     opt.size = parse_size(a.size);
-    opt.time = a.time.empty() ? TimeRange{scene->lines.time_min(), scene->lines.time_max(), 0.25}
-                              : parse_time_range(a.time);
+    opt.time = a.time.empty() ? default_time_range(*scene) : parse_time_range(a.time);
     opt.timing = parse_timing_backend(a.timing);
     opt.camera_path = a.camera;
     opt.orbit_deg_per_s = a.orbit;
@@ -502,12 +501,12 @@ PYBIND11_MODULE(_pathlet, m) {
         cli::SceneSource src;
         src.data = data;
         src.mesh = mesh;
-        src.time_array = time_array;
-        src.velocity_array = velocity_array;
-        src.time_step = time_step;
-        src.units = units;
-        src.streamlines = streamlines;
-        src.pseudo_time = pseudo_time;
+        src.load = {.time_array = time_array,
+                    .velocity_array = velocity_array,
+                    .time_step = time_step,
+                    .streamlines = streamlines,
+                    .pseudo_time = pseudo_time,
+                    .units = units};
         return std::const_pointer_cast<Scene>(load_scene_source(src));
     });
     m.def("from_arrays", &scene_from_arrays);
