@@ -1,6 +1,8 @@
 // Shape of the profiler's reports: table, CSV, JSON and the Chrome/Perfetto trace.
 #include "fake_profile.hpp"
 
+#include "text_lines.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -9,12 +11,7 @@
 namespace pathlet {
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
+using test::lines_of;
 
 TEST(ProfilerReport, TableListsPassesInOrderWithFrameAndFps) {
     FakeRun run(12);

@@ -1,6 +1,8 @@
 // Progress off a terminal (CI logs): plain lines, no '\r', no colour, on stderr only.
 #include "progress.hpp"
 
+#include "text_lines.hpp"
+
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -8,12 +10,7 @@
 namespace pathlet {
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
+using test::lines_of;
 
 TEST(FormatDuration, PicksUnitsByMagnitude) {
     EXPECT_EQ(format_duration(0.42), "0.4s");
