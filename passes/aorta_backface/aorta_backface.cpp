@@ -16,7 +16,9 @@ enum class Mode { backfaces, whole };  // the choices of `mode`
 class AortaBackface : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"aorta_backface.vert", "aorta_backface.frag"});
+        clear_shows_wall_ = ctx.params().b("clear_shows_wall");
+        prog_ = &ctx.program({"aorta_backface.vert", "aorta_backface.frag"},
+                             clear_shows_wall_ ? std::vector<std::string>{"CLEAR_SHOWS_WALL"} : std::vector<std::string>{});
         const pathlet::Scene& scene = ctx.scene().cpu();
         const float simplify = ctx.params().f("simplify");
         if (scene.mesh && !scene.mesh->empty() && (simplify != simplified_at_ || !wall_.vao())) {
@@ -37,9 +39,13 @@ public:
         glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width, dst.height, 1);
         const pathlet::GpuScene& scene = ctx.scene();
         if (!p.b("show") || !scene.has_mesh()) return;
-        ctx.bind_framebuffer({"final"}, "depth");
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);  // the G-buffer depth stays as it is
+        if (clear_shows_wall_) {
+            ctx.bind_framebuffer({"final"}, "");  // the shader reads the depth: not attached
+        } else {
+            ctx.bind_framebuffer({"final"}, "depth");
+            glEnable(GL_DEPTH_TEST);
+            glDepthMask(GL_FALSE);  // the G-buffer depth stays as it is
+        }
         // Back faces only: let the rasteriser cull the near side (half the wall's pixels and
         // setup) when the winding is consistent; the shader's normal test stays as a fallback.
         if (p.e<Mode>("mode") == Mode::backfaces) {
@@ -84,6 +90,7 @@ private:
     float simplified_at_ = -1.0f;
     float normal_sign_ = 1.0f;
     bool ccw_outward_ = true;
+    bool clear_shows_wall_ = false;
 };
 
 }  // namespace
@@ -97,6 +104,10 @@ PATHLET_PLUGIN("aorta_backface", {
                               "backfaces: the far side of the vessel, seen through it (the study); whole: every face")
                   .param_color("wall_color", {0.55f, 0.62f, 0.72f}, "wall colour before shading")
                   .param_float("opacity", 0.3, 0.0, 1.0, "how strongly the wall covers the background")
+                  .param_bool("clear_shows_wall", false,
+                              "also draw the wall where the depth has a line but the image is clear (alpha 0): for OIT "
+                              "graphs, whose G-buffer depth also holds fragments too faint to show (their rims and "
+                              "faded tips)")
                   .param_float("simplify", 0.008, 0.0, 0.05,
                                "cell of the wall's vertex clustering as a fraction of its bounding-box diagonal "
                                "(0.008: 1.8 mm on the phantom, 97k -> 19k triangles, 11 -> 4 ms at 720p); 0 = the full mesh")

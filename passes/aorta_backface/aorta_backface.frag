@@ -9,7 +9,15 @@ uniform vec3 u_wall_color;  // the pass's parameters, by declaration
 uniform int u_mode;         // 0: backfaces, 1: whole
 uniform float u_normal_sign;  // +1: the mesh's normals point outward, -1: inward
 layout(location = 0) out vec4 o_color;
+#ifdef CLEAR_SHOWS_WALL  // the depth test in here: a line hides the wall only where the image shows one
+uniform sampler2D u_depth;  // the pins, by declaration
+uniform sampler2D u_color;
+#endif
 void main() {
+#ifdef CLEAR_SHOWS_WALL
+    const ivec2 px = ivec2(gl_FragCoord.xy);
+    if (gl_FragCoord.z >= texelFetch(u_depth, px, 0).r && texelFetch(u_color, px, 0).a > 0.0) discard;
+#endif
     vec3 n = u_normal_sign * normalize(v_normal);
     vec3 to_eye = normalize(-v_pos);
     float facing = dot(n, to_eye);  // > 0: the side towards the viewer (outward normals)

@@ -1,7 +1,9 @@
 // fill_list: variant 2's second pass (seed §III.c). Rasterises the pathlets of the time window
 // through the line kit into per-pixel linked lists, with opacity ramping from 0 at the tail to
 // full and back to 0 at the head (the kit's end fade). Colour writes are masked as in the seed:
-// nothing goes to a framebuffer, only to the lists.
+// nothing goes to a framebuffer, only to the lists. Or, with its G-buffer outputs bound, the
+// same raster also writes variant 2's opaque G-buffer for LineAO (what a separate gbuffer pass
+// would draw: one raster of the window instead of two, the same lists).
 //
 // Overflow is never silent: after the draw the node counter is read back and compared with the
 // capacity. On overflow the buffer grows (x1.25 the count, within max_memory_mb and the GL
@@ -14,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,7 +35,22 @@ public:
 
     void setup(pathlet::PassContext& ctx) override {
         records_ = ctx.connected("records");
+        coverage_ = ctx.connected("coverage");
+        gbuffer_ = lines::gbuffer_targets(ctx);
+        const bool writes_gbuffer = ctx.connected("depth");
+        if (writes_gbuffer && coverage_)
+            throw std::runtime_error("bind 'coverage' or the G-buffer's 'depth', not both (with the G-buffer, its "
+                                     "depth is the coverage)");
+        if (!writes_gbuffer && !gbuffer_.pins.empty())
+            throw std::runtime_error("the G-buffer outputs (" + gbuffer_.pins.front() + ", ...) need 'depth' bound too");
         std::vector<std::string> defines = oit::defines();
+        if (writes_gbuffer) {
+            defines.push_back("WRITE_GBUFFER");
+            defines.insert(defines.end(), gbuffer_.defines.begin(), gbuffer_.defines.end());
+        } else {
+            gbuffer_.pins.clear();
+        }
+        writes_gbuffer_ = writes_gbuffer;
         if (records_) {
             defines.push_back("WRITE_RECORDS");
             for (const auto& d : lines::density_defines()) defines.push_back(d);
@@ -42,13 +60,20 @@ public:
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
         const size_t cap_bytes = size_t(ctx.params().f("max_memory_mb") * 1024.0 * 1024.0);
         max_nodes_ = std::max<size_t>(1, std::min(size_t(max_texels), cap_bytes / oit::kNodeBytes));
+        if (writes_gbuffer_) {
+            // The G-buffer's depth test keeps its nearest fragment, after the shader ran (it
+            // writes gl_FragDepth): every fragment still reaches its list, and no chunk may be
+            // occlusion-culled, since what the G-buffer hides is still a node.
+            drawer_.set_depth_func(GL_LEQUAL);
+            drawer_.set_occlusion_culling(false);
+            return;
+        }
         // Rasterise without colour attachments: a framebuffer that only has a size, plus the
         // optional coverage depth (every fragment kept: depth test ALWAYS).
         glm::ivec2 size = ctx.output_size();
         if (!fbo_) glCreateFramebuffers(1, &fbo_);
         glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x);
         glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y);
-        coverage_ = ctx.connected("coverage");
         glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, coverage_ ? ctx.texture("coverage").id : 0, 0);
         drawer_.set_depth_func(GL_ALWAYS);
     }
@@ -112,15 +137,19 @@ private:
 
     // Appends the window's fragments to the lists; returns the counter (may exceed capacity).
     GLuint draw(pathlet::PassContext& ctx, size_t capacity) {
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        glm::ivec2 size = ctx.output_size();
-        glViewport(0, 0, size.x, size.y);
-        if (coverage_) {
-            glDepthMask(GL_TRUE);
-            const float far = 1.0f;
-            glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &far);
+        if (writes_gbuffer_) {
+            lines::bind_gbuffer(ctx, gbuffer_, *prog_);  // cleared again when an overflow re-renders
+        } else {
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+            glm::ivec2 size = ctx.output_size();
+            glViewport(0, 0, size.x, size.y);
+            if (coverage_) {
+                glDepthMask(GL_TRUE);
+                const float far = 1.0f;
+                glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &far);
+            }
+            glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         }
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         GLuint counter = ctx.buffer("counter").id;
         prog_->bind_image("u_nodes", view_, GL_RGBA32UI, GL_WRITE_ONLY);  // heads: by declaration
         if (records_) prog_->bind_image("u_records", records_view_, GL_RGBA32UI, GL_WRITE_ONLY);
@@ -139,7 +168,8 @@ private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
     GLuint fbo_ = 0, view_ = 0, viewed_ = 0, records_view_ = 0, records_viewed_ = 0;
-    bool coverage_ = false, records_ = false;
+    bool coverage_ = false, records_ = false, writes_gbuffer_ = false;
+    lines::GBufferTargets gbuffer_;  // bound G-buffer colour targets (none without 'depth')
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
 };
@@ -147,7 +177,8 @@ private:
 pathlet::PassTypeInfo fill_list_type() {
     pathlet::PassTypeBuilder b("fill_list",
                                "variant 2: pathlet fragments into per-pixel linked lists (OIT) with the opacity of "
-                               "their colour hook (by default the kit's end fade); the node buffer grows on overflow");
+                               "their colour hook (by default the kit's end fade); the node buffer grows on overflow; "
+                               "with `depth` bound also the opaque G-buffer of the same fragments, for LineAO");
     lines::declare_params(b, {.color = "fade_opacity.frag"})
         .param_float("nodes_per_pixel", 4.0, 0.01, 1024.0,
                      "initial node capacity per output pixel (16 bytes a node); grown automatically on overflow")
@@ -157,7 +188,9 @@ pathlet::PassTypeInfo fill_list_type() {
         .input_texture("heads", "r32ui", "per-pixel list heads, cleared by clear_list")
         .input_buffer("counter", "node counter, cleared by clear_list")
         .output_texture("coverage", "depth24",
-                        "depth < 1 where any fragment landed (bind it so resolve_list skips empty tiles)", {.optional = true})
+                        "depth < 1 where any fragment landed (bind it so resolve_list skips empty tiles); not with "
+                        "the G-buffer outputs, whose depth serves the same",
+                        {.optional = true})
         .output_buffer("nodes",
                        "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
                        "overflow",
@@ -167,6 +200,8 @@ pathlet::PassTypeInfo fill_list_type() {
                        "opacity), grown with the nodes: resolve_list shades every fragment by its own AO (bind it "
                        "to get it)",
                        {.bytes = oit::kNodeBytes}, {.optional = true});
+    // Bound (with `depth`): the opaque G-buffer of the same fragments, for LineAO, in this raster.
+    lines::declare_gbuffer_outputs(b, /*optional=*/true);
     return b.make<FillList>();
 }
 

@@ -4,10 +4,14 @@
 // the old head), with its colour (speed map, colour hook, halo), the opacity of its colour hook
 // (by default the kit's end fade, fade_opacity.frag) times its edge coverage, its linear depth
 // and its line id; optionally a second record per node with its normal, tangent, axis and the
-// hook's opacity, from which resolve_list shades every fragment by its own volume AO.
+// hook's opacity, from which resolve_list shades every fragment by its own volume AO; and
+// optionally variant 2's opaque G-buffer of the same fragments (line_gbuffer_out.glsl).
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 #include "oit_list.glsl"
+#ifdef WRITE_GBUFFER
+#include "line_gbuffer_out.glsl"
+#endif
 #ifdef WRITE_RECORDS  // per node, what the kit's volume AO needs (resolve_list shades with it)
 #include "line_volume_ao.glsl"
 layout(rgba32ui) uniform writeonly uimageBuffer u_records;  // the pass's view of `records`
@@ -23,9 +27,18 @@ uniform int u_capacity;  // nodes that fit; beyond it fragments are only counted
 void main() {
     LineFrag f = line_fragment();
     vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
+#ifdef WRITE_GBUFFER
+    // Every fragment, opaque, as the gbuffer pass writes it. The depth test runs after this
+    // shader (it writes gl_FragDepth), so a fragment the G-buffer hides still becomes a node.
+    line_gbuffer_write(f, c.rgb);
+#endif
     // Analytic edge coverage: the rim's last pixel is as opaque as the share of it the quad covers.
     float a = c.a * clamp(0.5 + f.rim_px, 0.0, 1.0);
+#ifdef WRITE_GBUFFER
+    if (a < 0.5 / 255.0) return;  // invisible: no node (its G-buffer values stay)
+#else
     if (a < 0.5 / 255.0) discard;  // invisible: no node
+#endif
     uint i = atomicAdd(oit_count, 1u);
     if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room
     uint next = imageAtomicExchange(u_heads, ivec2(gl_FragCoord.xy), i);

@@ -264,10 +264,10 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
         const float grow = 0.5f * width_ * (width_hooked_ ? GpuScene::kMaxWidthHook : 1.0f);
         const Camera& cam = ctx.camera();
         // Only an opaque depth test hides anything: a pass that keeps every fragment (OIT's
-        // depth ALWAYS), or a window too small to pay for the depth read-back, gets the
-        // frustum culling alone.
+        // depth ALWAYS, or occlusion culling switched off), or a window too small to pay for
+        // the depth read-back, gets the frustum culling alone.
         glm::ivec2 size(0);
-        const bool occlusion = depth_func_ != GL_ALWAYS &&
+        const bool occlusion = occlusion_ && depth_func_ != GL_ALWAYS &&
                                ranges_.segments >= size_t(std::max(0, ctx.params().i("cull_min_segments")));
         const GLuint depth = occlusion ? bound_depth(size) : 0;
         culler_->split(ranges_, scene.chunks(), scene.cpu().lines.position.data(), cam.proj * cam.view, grow, depth != 0);

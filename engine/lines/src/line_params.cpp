@@ -78,13 +78,16 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                     "width (0..4); empty = full width");
 }
 
-PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b) {
-    return b.output_texture("color", "rgba8", "line colour incl. halos; background: `background` with alpha 0")
+PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b, bool optional) {
+    const PinOptions core{.optional = optional};
+    return b.output_texture("color", "rgba8", "line colour incl. halos; background: `background` with alpha 0", core)
         .output_texture("normal_depth", "rgba16f",
                         "xyz: view-space unit tube normal; w: linear depth (-z_eye - near) / (far - near); "
-                        "background: (0, 0, 0, 1)")
-        .output_texture("zoom", "r32f", "pixels per world unit at the fragment, (H/2) P[1][1] / -z_eye; background 0")
-        .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)")
+                        "background: (0, 0, 0, 1)",
+                        core)
+        .output_texture("zoom", "r32f", "pixels per world unit at the fragment, (H/2) P[1][1] / -z_eye; background 0",
+                        core)
+        .output_texture("depth", "depth24", "z-buffer of the tube surfaces (halos pushed back)", core)
         .output_texture("line_id", "r32i", "line index per pixel, -1 on background (bind it to get it)",
                         {.optional = true})
         .output_texture("edge", "rgba8",

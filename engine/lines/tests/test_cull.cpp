@@ -134,7 +134,8 @@ TEST(Cull, IllustratedStreamlinesTooAndAJumpIsCaughtInPhaseTwo) {
 }
 
 TEST(Cull, TransparencyIsNotOcclusionCulled) {
-    // fill_list keeps every fragment (depth ALWAYS): nothing may be hidden, the lists are the same.
+    // fill_list keeps every fragment (depth ALWAYS; in variant2_oit, which binds its G-buffer, the
+    // depth test after the shader and occlusion culling off): nothing may be hidden, the lists are the same.
     const CullRun on = render_run("variant2_oit.json", "fill_list", true, "final", 4, 6, 20);
     const CullRun off = render_run("variant2_oit.json", "fill_list", false, "final", 4, 6, 20);
     EXPECT_EQ(on.occluded, 0);

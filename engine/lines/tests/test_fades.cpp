@@ -427,3 +427,41 @@ TEST(AortaBackface, WallShowsBehindTheLinesAndNeverChangesThem) {
     EXPECT_GT(wall, 500u) << "the wall should show around and between the lines";
     EXPECT_TRUE(matches_golden(a, kHere + "/goldens/variant1_wall.png"));
 }
+
+TEST(AortaBackface, UnderOitTheWallShowsWhereTheImageIsClearAndNeverOverALine) {
+    // variant2_oit's depth is its opaque G-buffer's, which also holds fragments too faint to
+    // reach a list (rims, faded tips): with clear_shows_wall the wall shows there too, as
+    // around the lines; without it those pixels stay background, holes in the wall.
+    auto v2 = [](std::vector<std::string> sets) {
+        RenderOptions opt;
+        opt.graph_path = kSrc + "/graphs/variant2_oit.json";
+        // Smooth ramps over whole pathlets: their tails stay below 1/510 opacity for a few pixels.
+        sets.insert(sets.begin(), {"window=3", "line_width=1.2", "overlay=false", "tail_fade=1", "head_fade=0",
+                                   "fill_list.fade_curve=smooth"});
+        opt.sets = sets;
+        opt.size = {160, 120};
+        opt.time.start = 6.0;
+        return render_frame(rt(), bundle_in_a_tube(), opt, {"composed", "lit", "depth"});
+    };
+    Frame on = v2({});
+    Frame off = v2({"wall=false"});
+    Frame holes = v2({"wall.clear_shows_wall=false"});
+    const Image &a = on["composed"], &b = off["composed"], &h = holes["composed"], &lit = on["lit"];
+    EXPECT_EQ(lit.pixels, off["lit"].pixels) << "the wall must not touch the lines";
+    size_t wall = 0, faint = 0, faint_walled = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const bool line = lit.at(x, y, 3) > 0.0f;
+            for (int c = 0; c < 4; ++c)
+                if (line) ASSERT_EQ(a.at(x, y, c), b.at(x, y, c)) << "a line pixel changed at " << x << "," << y;
+            if (line) continue;
+            wall += a.at(x, y, 3) == 1.0f;
+            if (on["depth"].at(x, y, 0) < 1.0f) {  // a fragment the image does not show
+                ++faint;
+                faint_walled += a.at(x, y, 3) == 1.0f && h.at(x, y, 3) == 0.0f;
+            }
+        }
+    EXPECT_GT(wall, 500u) << "the wall should show around and between the lines";
+    EXPECT_GT(faint, 5u) << "the bundle's rims and tips leave clear pixels with a depth";
+    EXPECT_GT(faint_walled, faint / 2) << "the wall must show at clear pixels the depth alone would hide";
+}

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
@@ -146,6 +148,57 @@ TEST(Oit, OutputIsDeterministicAndFinite) {
         EXPECT_EQ(a["final"].pixels, b["final"].pixels) << g << ": two runs differ";
         EXPECT_FALSE(has_nan(a["final"])) << g;
     }
+}
+
+TEST(Oit, GBufferInTheListRasterEqualsTheGBufferPass) {
+    // The same lines into a G-buffer twice: by fill_list beside its lists, and by the gbuffer
+    // pass alone. Bit for bit the same, also when an overflow makes fill_list draw the frame again.
+    for (const char* npp : {"4", "0.01"}) {
+        Frame f = render("oit_gbuffer.json", {std::string("fill_list.nodes_per_pixel=") + npp},
+                         {"color", "f_color", "f_normal_depth", "f_zoom", "f_depth", "f_line_id", "g_color",
+                          "g_normal_depth", "g_zoom", "g_depth", "g_line_id"});
+        for (const char* t : {"color", "normal_depth", "zoom", "depth", "line_id"})
+            EXPECT_EQ(f[std::string("f_") + t].pixels, f[std::string("g_") + t].pixels) << t << ", nodes_per_pixel " << npp;
+        size_t lines = 0;
+        for (size_t i = 0; i < f["g_depth"].pixels.size(); ++i) lines += f["g_depth"].pixels[i] < 1.0f;
+        EXPECT_GT(lines, 300u) << "the frame must show lines";
+        // ... and the lists are those fill_list fills without a G-buffer.
+        Frame plain = render("oit_only.json", {}, {"color"});
+        EXPECT_EQ(f["color"].pixels, plain["color"].pixels) << "nodes_per_pixel " << npp;
+    }
+}
+
+TEST(Oit, GBufferOutputsNeedTheDepthAndExcludeCoverage) {
+    const std::string base = kHere + "/graphs/oit_gbuffer.json";
+    auto error_of = [&](const std::string& from, const std::string& to, const std::string& from2 = "",
+                        const std::string& to2 = "") {
+        std::string text;
+        {
+            std::ifstream in(base);
+            text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        }
+        const size_t at = text.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        text.replace(at, from.size(), to);
+        if (!from2.empty()) text.replace(text.find(from2), from2.size(), to2);
+        const std::string path = scratch() + "/oit_gbuffer_bad.json";
+        std::ofstream(path) << text;
+        try {
+            render(path, {}, {"color"});
+        } catch (const std::exception& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    // Without `depth`, the G-buffer targets have no depth test to keep the nearest fragment.
+    std::string e = error_of("\"depth\": \"f_depth\",", "", "\"coverage\": \"f_depth\"", "\"coverage\": \"g_depth\"");
+    EXPECT_NE(e.find("need 'depth'"), std::string::npos) << e;
+    EXPECT_NE(e.find("fill_list"), std::string::npos) << "the error names the pass: " << e;
+    // coverage and the G-buffer's depth are one depth attachment.
+    e = error_of("\"depth\": \"f_depth\",", "\"depth\": \"f_depth\", \"coverage\": \"f_coverage\",",
+                 "\"f_depth\": { \"format\": \"depth24\" },",
+                 "\"f_depth\": { \"format\": \"depth24\" }, \"f_coverage\": { \"format\": \"depth24\" },");
+    EXPECT_NE(e.find("not both"), std::string::npos) << e;
 }
 
 TEST(Oit, OverflowIsDetectedReportedAndRecovered) {

@@ -73,7 +73,19 @@ TimeWindow time_window(const GpuScene& scene, float window, double t);
 // width_factor (the parameters above).
 float line_width(const PassContext& ctx);
 // LineAO's G-buffer outputs: color, normal_depth, zoom, depth, optional line_id, edge, tangent.
-PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b);
+// `optional`: every one may stay unbound (a pass that writes a G-buffer only when a graph asks,
+// as fill_list does).
+PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b, bool optional = false);
+// The G-buffer's colour targets a pass's graph binds, in location order, and the defines that
+// give line_gbuffer_out.glsl's outputs (written by line_gbuffer_write) their locations.
+struct GBufferTargets {
+    std::vector<std::string> pins;
+    std::vector<std::string> defines;
+};
+GBufferTargets gbuffer_targets(const PassContext& ctx);
+// Binds the targets with the pass's `depth`, clears them to their background values and the
+// depth to 1, and puts `prog` in use with its u_zoom_scale set: a G-buffer pass's frame start.
+void bind_gbuffer(PassContext& ctx, const GBufferTargets& targets, const ShaderProgram& prog);
 // A G-buffer line pass type: the shared parameters and the G-buffer outputs; add your own
 // parameters and finish with .make<YourPass>() (.make<GBufferPass>() for a type that only
 // names its default hooks).
@@ -107,6 +119,9 @@ public:
     // while a bound depth target still records where fragments landed (and nothing is
     // occlusion-culled).
     void set_depth_func(GLenum f) { depth_func_ = f; }
+    // Off: frustum culling only, with any depth test. For a pass whose depth-tested targets are
+    // not all it writes (fill_list's lists beside its G-buffer: a hidden fragment is still a node).
+    void set_occlusion_culling(bool on) { occlusion_ = on; }
 
     // Segments drawn in the last frame (after culling and the level of detail).
     size_t segments() const { return segments_; }
@@ -119,6 +134,7 @@ private:
     void tile_depth(PassContext& ctx, const ShaderProgram& prog, GLuint depth, glm::ivec2 size);
 
     GLenum depth_func_ = GL_LEQUAL;
+    bool occlusion_ = true;
     GpuScene::Ranges ranges_;
     bool lod_on_ = false, width_hooked_ = false;
     struct {
@@ -221,7 +237,7 @@ protected:
 
     ShaderProgram* prog_ = nullptr;
     Drawer drawer_;
-    std::vector<std::string> targets_;  // the bound colour attachments, in location order
+    GBufferTargets targets_;  // the bound colour attachments, in location order
 };
 
 }  // namespace pathlet::lines
