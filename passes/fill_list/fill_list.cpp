@@ -37,20 +37,17 @@ public:
         records_ = ctx.connected("records");
         coverage_ = ctx.connected("coverage");
         gbuffer_ = lines::gbuffer_targets(ctx);
-        const bool writes_gbuffer = ctx.connected("depth");
-        if (writes_gbuffer && coverage_)
+        writes_gbuffer_ = ctx.connected("depth");
+        if (writes_gbuffer_ && coverage_)
             throw std::runtime_error("bind 'coverage' or the G-buffer's 'depth', not both (with the G-buffer, its "
                                      "depth is the coverage)");
-        if (!writes_gbuffer && !gbuffer_.pins.empty())
+        if (!writes_gbuffer_ && !gbuffer_.pins.empty())
             throw std::runtime_error("the G-buffer outputs (" + gbuffer_.pins.front() + ", ...) need 'depth' bound too");
         std::vector<std::string> defines = oit::defines();
-        if (writes_gbuffer) {
+        if (writes_gbuffer_) {
             defines.push_back("WRITE_GBUFFER");
             defines.insert(defines.end(), gbuffer_.defines.begin(), gbuffer_.defines.end());
-        } else {
-            gbuffer_.pins.clear();
         }
-        writes_gbuffer_ = writes_gbuffer;
         if (records_) {
             defines.push_back("WRITE_RECORDS");
             for (const auto& d : lines::density_defines()) defines.push_back(d);
@@ -169,7 +166,7 @@ private:
     lines::Drawer drawer_;
     GLuint fbo_ = 0, view_ = 0, viewed_ = 0, records_view_ = 0, records_viewed_ = 0;
     bool coverage_ = false, records_ = false, writes_gbuffer_ = false;
-    lines::GBufferTargets gbuffer_;  // bound G-buffer colour targets (none without 'depth')
+    lines::GBufferTargets gbuffer_;  // the bound G-buffer colour targets (only with 'depth')
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
 };

@@ -140,4 +140,10 @@ TEST(Cull, TransparencyIsNotOcclusionCulled) {
     const CullRun off = render_run("variant2_oit.json", "fill_list", false, "final", 4, 6, 20);
     EXPECT_EQ(on.occluded, 0);
     EXPECT_EQ(worst_rms(on, off), 0.0);
+    // At rest with whole lines, where the G-buffer pass hides over 100 chunks (the first test):
+    // variant2_oit's G-buffer depth must not hide any of the lists' fragments either.
+    const CullRun rest_on = render_run("variant2_oit.json", "fill_list", true, "final", 4, 5, 0, 0.0);
+    const CullRun rest_off = render_run("variant2_oit.json", "fill_list", false, "final", 4, 5, 0, 0.0);
+    EXPECT_EQ(rest_on.occluded, 0);
+    EXPECT_EQ(worst_rms(rest_on, rest_off), 0.0);
 }

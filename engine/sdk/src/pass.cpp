@@ -278,6 +278,13 @@ ParamDecl make_param(const std::string& name, ParamType t, json def, const std::
     p.doc = doc;
     return p;
 }
+// An int or float parameter's range and options.
+ParamDecl ranged(ParamDecl p, double min, double max, ParamOptions o) {
+    p.min = min;
+    p.max = max;
+    p.pixels = o.pixels;
+    return p;
+}
 }  // namespace
 
 PassTypeBuilder& PassTypeBuilder::param_bool(const std::string& name, bool def, const std::string& doc) {
@@ -286,21 +293,11 @@ PassTypeBuilder& PassTypeBuilder::param_bool(const std::string& name, bool def, 
 }
 PassTypeBuilder& PassTypeBuilder::param_int(const std::string& name, int def, int min, int max, const std::string& doc,
                                             ParamOptions o) {
-    auto p = make_param(name, ParamType::Int, def, doc);
-    p.min = min;
-    p.max = max;
-    p.pixels = o.pixels;
-    info_.params.push_back(p);
-    return *this;
+    return param(ranged(make_param(name, ParamType::Int, def, doc), min, max, o));
 }
 PassTypeBuilder& PassTypeBuilder::param_float(const std::string& name, double def, double min, double max,
                                               const std::string& doc, ParamOptions o) {
-    auto p = make_param(name, ParamType::Float, def, doc);
-    p.min = min;
-    p.max = max;
-    p.pixels = o.pixels;
-    info_.params.push_back(p);
-    return *this;
+    return param(ranged(make_param(name, ParamType::Float, def, doc), min, max, o));
 }
 PassTypeBuilder& PassTypeBuilder::param(ParamDecl d) {
     info_.params.push_back(std::move(d));
