@@ -11,7 +11,14 @@ PATHLET=${PATHLET:-build/bin/pathlet}
 # Replaces the lines between the marker $2 and the end marker of file $1 with $3.
 splice() {
   local tmp
+  # Both markers, in order: without the end line everything after the start would be lost.
+  if ! awk -v marker="$2" '$0 == marker { m = 1 } m && /^<!-- end of generated tables -->$/ { ok = 1 } END { exit !ok }' "$1"; then
+    echo "$1: needs the line '$2' and, after it, '<!-- end of generated tables -->'" >&2
+    return 1
+  fi
   tmp=$(mktemp "$1.XXXXXX")
+  trap 'rm -f "$tmp"' RETURN
+  chmod --reference="$1" "$tmp"
   awk -v marker="$2" -v tables="$3" '
     $0 == marker { print; print ""; print tables; skip = 1; next }
     /^<!-- end of generated tables -->$/ { skip = 0; print ""; print; next }

@@ -114,6 +114,12 @@ ShaderProgram& PassContext::program(const std::vector<std::string>& files, const
 }
 
 namespace {
+// "graph.json:/passes/3: " for an error of a pass (the graph file and the pass's place in it),
+// so a setup error names the file and the place like the compiler's errors do.
+std::string where(const CompiledGraph& g, const CompiledPass& p) {
+    if (g.file.empty()) return p.pointer.empty() ? "" : p.pointer + ": ";
+    return g.file + ":" + p.pointer + ": ";
+}
 const char* glsl_type_name(GLenum t) {
     switch (t) {
         case GL_FLOAT: return "float";
@@ -377,13 +383,13 @@ void Executor::setup() {
             pass->setup(ctx);
         } catch (const ShaderError& e) {
             gl_.take_errors();  // the compile's own debug messages: reported here, not by the next frame
-            throw PassError("pass '" + cp.name + "' (" + cp.type->type + "): " + e.what());
+            throw PassError(where(cg_, cp) + "pass '" + cp.name + "' (" + cp.type->type + "): " + e.what());
         } catch (const std::exception& e) {
             gl_.take_errors();
-            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
+            throw PassError(where(cg_, cp) + "pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
         } catch (...) {
             gl_.take_errors();
-            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") threw a non-standard exception in setup");
+            throw PassError(where(cg_, cp) + "pass '" + cp.name + "' (" + cp.type->type + ") threw a non-standard exception in setup");
         }
         check_gl(cp.name, "setup");
         passes_.push_back(std::move(pass));
@@ -416,7 +422,7 @@ void Executor::reparam(size_t i) {
         } catch (...) {
         }
         gl_.set_scope("");
-        throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
+        throw PassError(where(cg_, cp) + "pass '" + cp.name + "' (" + cp.type->type + ") failed in setup: " + e.what());
     }
     check_gl(cp.name, "setup");
     gl_.set_scope("");

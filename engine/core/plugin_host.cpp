@@ -1,6 +1,7 @@
 #include "plugin_host.hpp"
 
 #include "plugin_elf.hpp"
+#include "plugin_trust.hpp"
 
 #include <pathlet/plugin.hpp>
 
@@ -77,33 +78,18 @@ PluginHost::FolderScan PluginHost::scan_dir(const std::string& dir) {
     return scan;
 }
 
-namespace {
-
-// Who may change a file or folder: its owner (this user or root only) and, when world-writable,
-// anyone. "" when only this user or root can.
-std::string write_access_problem(const std::string& path, const struct stat& st, const char* what) {
-    if (st.st_mode & S_IWOTH)
-        return path + ": " + what + " is world-writable: anyone on this machine could put code in it (chmod o-w " +
-               path + ")";
-    if (st.st_uid != ::geteuid() && st.st_uid != 0)
-        return path + ": " + what + " belongs to another user (uid " + std::to_string(st.st_uid) +
-               "), who could put code in it";
-    return "";
-}
-
-}  // namespace
 
 std::string PluginHost::folder_problem(const std::string& dir) {
     struct stat st {};
     if (::stat(dir.c_str(), &st) != 0) return "";  // nothing there, nothing loaded
-    return write_access_problem(dir, st, "plugin folder");
+    return write_access_problem(dir, st, "plugin folder", false);
 }
 
 void PluginHost::load_file(const std::string& path) {
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) throw PluginError(path + ": file not found");
     if (!S_ISREG(st.st_mode)) throw PluginError(path + ": not a regular file; never opened");
-    if (std::string why = write_access_problem(path, st, "plugin file"); !why.empty())
+    if (std::string why = write_access_problem(path, st, "plugin file", false); !why.empty())
         throw PluginError(why + "; never opened");
     PluginSymbols sym;
     try {

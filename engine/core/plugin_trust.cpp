@@ -32,13 +32,23 @@ std::string canonical_dir(const std::string& dir) {
     return c.string();
 }
 
+std::string write_access_problem(const std::string& path, const struct stat& st, const char* what, bool group_too) {
+    if (st.st_mode & S_IWOTH)
+        return path + ": " + what + " is world-writable: anyone on this machine could change it (chmod o-w " + path + ")";
+    if (group_too && (st.st_mode & S_IWGRP))
+        return path + ": " + what + " is group-writable: others in its group could change it (chmod g-w " + path + ")";
+    if (st.st_uid != ::geteuid() && st.st_uid != 0)
+        return path + ": " + what + " belongs to another user (uid " + std::to_string(st.st_uid) + "), who could change it";
+    return "";
+}
+
 std::vector<std::string> read_trusted_dirs() {
     const std::string path = trust_file_path();
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) return {};
-    if ((st.st_mode & (S_IWOTH | S_IWGRP)) || (st.st_uid != ::geteuid() && st.st_uid != 0))
-        throw std::runtime_error(path + ": the plugin trust file can be changed by other users, so none of it is "
-                                        "believed (chmod go-w, or remove it and trust the folders again)");
+    if (const std::string why = write_access_problem(path, st, "the plugin trust file", true); !why.empty())
+        throw std::runtime_error("the plugin trust file can be changed by other users, so none of it is believed "
+                                 "(or remove it and trust the folders again): " + why);
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot read the plugin trust file");
     std::vector<std::string> dirs;

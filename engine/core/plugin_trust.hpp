@@ -11,11 +11,17 @@
 // "trusted/../elsewhere" path is trusted only when the folder it ends at is.
 #pragma once
 
+#include <sys/stat.h>
+
 #include <string>
 #include <vector>
 
 namespace pathlet {
 
+// Who besides this user and root could change `path` (its stat `st`): "" when nobody, else why,
+// naming `what` ("plugin file", "plugin folder", ...): world write access, another owner, and
+// with `group_too` group write access. One rule for plugin files, their folders and the trust file.
+std::string write_access_problem(const std::string& path, const struct stat& st, const char* what, bool group_too);
 // $XDG_CONFIG_HOME/pathlet/trusted-plugin-dirs, else $HOME/.config/pathlet/trusted-plugin-dirs.
 std::string trust_file_path();
 // The folder's canonical path; "" when it does not exist or is not a folder.

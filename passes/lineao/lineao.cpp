@@ -69,7 +69,7 @@ public:
         glProgramUniform1fv(id, prog_->loc("u_delta"), L.count, L.delta);
         glProgramUniform2fv(id, prog_->loc("u_level_dir"), L.count, glm::value_ptr(L.start[0]));
         prog_->set("u_lod_offset", int(std::lround(std::log2(std::max(ctx.pixel_scale(), 1.0f)))));
-        prog_->set("u_step_width", ctx.scene().line_width(p.f("line_width"), p.f("width_factor")));
+        prog_->set("u_step_width", pathlet::lines::line_width(ctx));
         const bool pyramid = p.b("use_pyramid") && ctx.connected("pyramid");
         prog_->set("u_from_pyramid", pyramid ? 1 : 0);
         prog_->set("u_max_lod", pyramid ? ctx.texture("pyramid").mips - 1 : 0);

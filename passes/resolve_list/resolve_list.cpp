@@ -52,6 +52,9 @@ public:
         }
         if (ctx.connected("ao") != ctx.connected("core"))
             throw std::runtime_error("connect both 'ao' and 'core' (the core's normal_depth) or neither");
+        if (vao_on_ && ctx.connected("ao"))  // the shader has one source of AO per fragment
+            throw std::runtime_error("connect 'ao' and 'core' (the core's AO) or 'records' and 'density' (every "
+                                     "fragment's own AO), not both");
     }
 
     void execute(pathlet::PassContext& ctx) override {

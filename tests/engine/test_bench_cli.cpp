@@ -66,6 +66,8 @@ TEST(BenchCli, ExperimentErrorsNameFilePointerAndSuggest) {
         {R"({"graphs": ["isl"], "sweep": {"param": "window", "valuse": [1]}})", {"/sweep/valuse", "did you mean 'values'"}},
         {R"({"graphs": ["isl", {"graph": "isl", "lable": "x"}]})", {"/graphs/1/lable", "did you mean 'label'"}},
         {R"({"graphs": ["isl"], "frames": 0})", {"/frames", ">= 1"}},
+        {R"({"graphs": ["isl"], "time": "9:8"})", {"/time", "'9:8'", "END is before START"}},
+        {R"({"graphs": ["isl"], "time": "nine"})", {"/time", "START:END:STEP"}},
         {R"({"graphs": ["isl"], "data": [{"phantom": "studdy"}]})", {"/data/0/phantom", "did you mean 'study'"}},
         {R"({"graphs": ["isl", "no_such_graph_xyz"]})", {"/graphs/1", "no_such_graph_xyz"}},
         {R"({"graphs": ["isl", "isl"]})", {"/graphs/1", "used twice"}},
@@ -305,6 +307,18 @@ TEST(BenchCli, QualifiedSetReachesOneExperimentGraph) {
                     " --set nope:window=0.5");
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.err.find("none of the graphs"), std::string::npos) << r.err;
+}
+
+TEST(BenchCli, AWrongSetOfTheLastGraphStopsBeforeAnyRun) {
+    fs::path d = scratch("late_set");
+    fs::path f = write(d / "e.json", R"({ "graphs": ["isl", {"graph": "gbuffer_only", "label": "gb", "set": ["window=-5"]}],
+      "data": [{"phantom": "small"}], "sizes": ["32x24"], "frames": 1, "warmup": 0 })");
+    CliRun r = pathlet_cli("bench --experiment " + f.string() + " --no-images --out " + (d / "o").string());
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("window"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("1/2 runs"), std::string::npos) << "no run may start before the sets are checked:\n" << r.err;
+    const fs::path results = d / "o" / "results.json";
+    if (fs::exists(results)) EXPECT_TRUE(json::parse(slurp(results))["runs"].empty()) << "no run finished";
 }
 
 TEST(BenchCli, CtrlCLeavesCompleteFilesForFinishedRuns) {

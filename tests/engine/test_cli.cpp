@@ -4,6 +4,7 @@
 #include "image_io.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -56,6 +57,15 @@ TEST(Cli, PassesListsTypesWithFilesAndDescribes) {
     r = pathlet_cli("passes --describe blurr");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("did you mean 'blur'"), std::string::npos) << r.err;
+    // --json: blur's own tmp texture is internal, not a pin a graph could bind.
+    r = pathlet_cli("passes --json");
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::string tmp_dir;
+    for (const auto& t : nlohmann::json::parse(r.out))
+        if (t["type"] == "blur")
+            for (const auto& p : t["pins"])
+                if (p["name"] == "tmp") tmp_dir = p["dir"];
+    EXPECT_EQ(tmp_dir, "internal");
 }
 
 TEST(Cli, ValidateReportsEveryErrorWithPointerAndExits1) {

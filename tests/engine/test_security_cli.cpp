@@ -173,6 +173,12 @@ TEST_F(Security, ATrustFileOthersCanWriteIsNotBelieved) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("can be changed by other users"), std::string::npos) << r.err;
     EXPECT_FALSE(constructor_ran());
+    fs::permissions(trust_file(), fs::perms(0620));  // the group may write it: not believed either
+    r = run("graph " + graph("g.json", "plugins").string() + " --plan");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("group-writable"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(trust_file().string()), std::string::npos) << "names the file: " << r.err;
+    EXPECT_FALSE(constructor_ran());
 }
 
 TEST_F(Security, TheTrustFileLivesInXdgConfigHomeElseHomeConfig) {

@@ -2,6 +2,7 @@
 // the file, a JSON pointer to the bad value and a did-you-mean for misspelt keys.
 #include "experiment.hpp"
 
+#include "renderer.hpp"
 #include "util/text.hpp"
 
 #include <pathlet/scene.hpp>
@@ -68,16 +69,6 @@ struct Ctx {
     }
 };
 
-// WxH with whole numbers in 1..16384 (as --size).
-bool valid_size(const std::string& s) {
-    size_t x = s.find('x');
-    if (x == std::string::npos || x == 0 || x + 1 >= s.size() || x > 5 || s.size() - x - 1 > 5) return false;
-    for (size_t i = 0; i < s.size(); ++i)
-        if (i != x && !std::isdigit(static_cast<unsigned char>(s[i]))) return false;
-    const int w = std::stoi(s.substr(0, x)), h = std::stoi(s.substr(x + 1));  // at most 5 digits each
-    return w > 0 && h > 0 && w <= 16384 && h <= 16384;
-}
-
 }  // namespace
 
 Experiment parse_experiment(const json& j, const std::string& origin) {
@@ -118,12 +109,24 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
         e.sizes.clear();
         for (size_t i = 0; i < s.size(); ++i) {
             std::string v = c.str(s[i], "/sizes/" + std::to_string(i));
-            if (!valid_size(v))
+            try {
+                parse_size(v);  // the rule of --size
+            } catch (const std::invalid_argument&) {
                 c.fail("/sizes/" + std::to_string(i), "expected WxH such as 1280x720 (1..16384), got '" + v + "'");
+            }
             e.sizes.push_back(v);
         }
     }
-    if (j.contains("time")) e.time = c.scalar(j["time"], "/time");
+    if (j.contains("time")) {
+        e.time = c.scalar(j["time"], "/time");
+        try {
+            parse_time_range(e.time);  // the rule of --time
+        } catch (const std::invalid_argument& ex) {
+            std::string why = ex.what();
+            why.erase(0, why.find(": ") + 2);  // without the option's name: it came from this file
+            c.fail("/time", "'" + e.time + "': " + why);
+        }
+    }
     // Caps as for a graph's numbers: a typo of 1e9 frames is refused, not run for a week.
     if (j.contains("frames")) e.frames = c.count(j["frames"], "/frames", 1, 100000);
     if (j.contains("warmup")) e.warmup = c.count(j["warmup"], "/warmup", 0, 100000);

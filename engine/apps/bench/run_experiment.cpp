@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <set>
 
 namespace pathlet::cli::bench {
 
@@ -35,6 +36,17 @@ json graph_info(const Experiment& e, const std::string& origin) {
     return info;
 }
 
+namespace {
+// The --set list of one run: the experiment's, its graph's, the sweep's value.
+std::vector<std::string> run_sets(const Experiment& e, const Run& run) {
+    std::vector<std::string> sets = e.sets;
+    const auto& g = e.graphs[run.graph];
+    sets.insert(sets.end(), g.sets.begin(), g.sets.end());
+    if (!e.sweep.param.empty()) sets.push_back(e.sweep.param + "=" + run.sweep_value);
+    return sets;
+}
+}  // namespace
+
 json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& s, const ExperimentHooks& hooks) {
     RenderOptions base;
     base.time = parse_time_range(e.time);
@@ -49,6 +61,12 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
     const std::vector<Run> runs = plan_runs(e);
     size_t mine = 0;
     for (size_t k = 0; k < runs.size(); ++k) mine += s.shard.owns(k);
+    // Every graph with the sets of its runs before any work (GraphError): a wrong name or value
+    // for the last graph or sweep value must not wait for the runs before it.
+    std::set<std::pair<size_t, std::string>> checked;
+    for (size_t k = 0; k < runs.size(); ++k)
+        if (s.shard.owns(k) && checked.emplace(runs[k].graph, runs[k].sweep_value).second)
+            rt.load_graph(resolve_graph_path(e.graphs[runs[k].graph].graph), run_sets(e, runs[k]));
     rt.ensure_gl(true);
 
     Results results(e, s.command, rt.gl->renderer(), s.graphs, runs.size(), s.shard);
@@ -76,9 +94,7 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
         const auto& g = e.graphs[run.graph];
         RenderOptions opt = base;
         opt.graph_path = resolve_graph_path(g.graph);
-        opt.sets = e.sets;
-        opt.sets.insert(opt.sets.end(), g.sets.begin(), g.sets.end());
-        if (!e.sweep.param.empty()) opt.sets.push_back(e.sweep.param + "=" + run.sweep_value);
+        opt.sets = run_sets(e, run);
         opt.size = parse_size(run.size);
         RenderResult r = render(rt, *scene, opt);
         std::string image;

@@ -80,7 +80,7 @@ int run(const std::vector<std::string>& argv) {
             for (const auto& p : t->params)
                 pt["params"].push_back({{"name", p.name}, {"type", to_string(p.type)}, {"default", p.def}, {"doc", p.doc}});
             for (const auto& p : t->pins)
-                pt["pins"].push_back({{"name", p.name}, {"dir", p.dir == PinDir::Input ? "in" : "out"},
+                pt["pins"].push_back({{"name", p.name}, {"dir", direction_name(p)},
                                       {"kind", p.kind == PinKind::Texture ? "texture" : "buffer"}, {"format", p.format},
                                       {"optional", p.optional}, {"doc", p.doc}});
             out.push_back(pt);

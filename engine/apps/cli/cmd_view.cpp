@@ -387,11 +387,14 @@ void ViewLoop::copy_command() {
 void ViewLoop::present() {
     const Texture tex = session_.executor().texture(session_.compiled().outputs.front().resource);
     blit_.draw(tex, o_.size);
-    if (!o_.screenshot.empty() || screenshot_now_) last_ = read_texture(tex.id, tex.width, tex.height, 0, 4);
+    if (screenshot_now_) last_ = read_texture(tex.id, tex.width, tex.height, 0, 4);
     info_.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start_).count();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    if (!o_.screenshot_window.empty()) last_window_ = read_window(o_.size);
+    // The window's pixels are gone after the swap: read them on the last frame when it is known
+    // (--exit-after), else on every frame (closing the window comes unannounced).
+    const bool last_frame = o_.exit_after != 0 && shown_ + 1 >= o_.exit_after;
+    if (!o_.screenshot_window.empty() && (o_.exit_after == 0 || last_frame)) last_window_ = read_window(o_.size);
     if (screenshot_now_) {
         char name[64];
         std::snprintf(name, sizeof name, "pathlet_view_%05ld.png", shown_);
@@ -436,8 +439,10 @@ void ViewLoop::update_title() {
 
 int ViewLoop::finish() {
     if (!o_.screenshot.empty()) {
-        if (last_.width == 0) throw std::runtime_error("view: no frame was shown; no screenshot written");
-        write_image(o_.screenshot, last_);
+        if (shown_ == 0) throw std::runtime_error("view: no frame was shown; no screenshot written");
+        // The last frame's output is still in its texture: one read at the end, not one a frame.
+        const Texture tex = session_.executor().texture(session_.compiled().outputs.front().resource);
+        write_image(o_.screenshot, read_texture(tex.id, tex.width, tex.height, 0, 4));
         std::fprintf(stderr, "screenshot: %s\n", o_.screenshot.c_str());
     }
     if (!o_.screenshot_window.empty()) {

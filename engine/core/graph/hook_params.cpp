@@ -3,6 +3,8 @@
 #include "graph_internal.hpp"
 #include "plugin_host.hpp"
 
+#include <pathlet/shader.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -82,23 +84,18 @@ void collect(const std::string& path, const std::vector<std::string>& dirs, std:
     if (depth > 16) throw HookError(path + ": #include nested too deeply (a cycle?)");
     if (!seen.insert(fs::weakly_canonical(path).string()).second) return;
     out.push_back({path, read_text(path)});
-    static const std::regex include_re(R"re(^\s*#\s*include\s+"([^"]+)"\s*$)re");
     std::istringstream in(out.back().text);
     std::string line;
     for (int n = 1; std::getline(in, line); ++n) {
-        std::smatch m;
-        if (!std::regex_match(line, m, include_re)) continue;
-        if (std::string err = check_hook_name(m[1].str()); !err.empty() && !m[1].str().empty() &&
-            (m[1].str().find("..") != std::string::npos || m[1].str()[0] == '/'))
-            throw HookError(path + ":" + std::to_string(n) + ": #include \"" + m[1].str() +
-                            "\": includes are found on the shader path, without '..' or absolute paths");
+        const std::string name = include_target(line);  // the includes the compiler inlines
+        if (name.empty()) continue;
         std::vector<std::string> search{fs::path(path).parent_path().string()};
         search.insert(search.end(), dirs.begin(), dirs.end());
         std::string inc;
         try {
-            inc = find_file(m[1].str(), search);
-        } catch (const HookError& e) {
-            throw HookError(path + ":" + std::to_string(n) + ": " + e.what());
+            inc = find_shader_file(name, search);  // and found as it finds them
+        } catch (const ShaderError& e) {
+            throw HookError(path + ":" + std::to_string(n) + ": #include \"" + name + "\": " + e.what());
         }
         collect(inc, dirs, out, seen, depth + 1);
     }
@@ -194,11 +191,6 @@ private:
         const double v = std::strtod(t.c_str(), &end);
         if (end && *end == '\0' && !t.empty()) return v;
         return t;  // an enum choice
-    }
-    json number() {
-        json v = scalar(token());
-        if (!v.is_number()) fail("expected a number as the default");
-        return v;
     }
     json triple() {
         skip();

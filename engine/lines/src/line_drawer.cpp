@@ -79,7 +79,7 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     // sides of every branch, so a uniform switch costs all four maps per fragment. setup()
     // runs again when a parameter changes, which picks the new variant.
     if (ctx.params().raw().contains("colormap"))
-        all.push_back("LINE_COLORMAP " + std::to_string(colormap_index(ctx.params().s("colormap"))));
+        all.push_back("LINE_COLORMAP " + std::to_string(ctx.params().index("colormap")));
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
     ShaderProgram& prog = ctx.program(files, all);
     check_block_layout(prog);

@@ -10,11 +10,6 @@ const std::vector<std::string>& colormaps() {
     return names;
 }
 
-int colormap_index(const std::string& name) {
-    const auto& n = colormaps();
-    return int(std::find(n.begin(), n.end(), name) - n.begin()) % int(n.size());
-}
-
 PassTypeBuilder& declare_window_param(PassTypeBuilder& b) {
     return b.param_float("window", 1.0, -1.0, 1e6,
                          "pathlet length in seconds: the parts of the lines with times in [t - window, t] are drawn, "

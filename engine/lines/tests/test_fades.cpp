@@ -421,7 +421,9 @@ TEST(AortaBackface, WallShowsBehindTheLinesAndNeverChangesThem) {
         for (int x = 0; x < a.width; ++x) {
             const bool line = lit.at(x, y, 3) > 0.5f;
             for (int c = 0; c < 4; ++c)
-                if (line) ASSERT_EQ(a.at(x, y, c), b.at(x, y, c)) << "a line pixel changed at " << x << "," << y;
+                if (line) {
+                    ASSERT_EQ(a.at(x, y, c), b.at(x, y, c)) << "a line pixel changed at " << x << "," << y;
+                }
             if (!line && a.at(x, y, 3) == 1.0f && b.at(x, y, 3) == 0.0f) ++wall;
         }
     EXPECT_GT(wall, 500u) << "the wall should show around and between the lines";
@@ -453,7 +455,9 @@ TEST(AortaBackface, UnderOitTheWallShowsWhereTheImageIsClearAndNeverOverALine) {
         for (int x = 0; x < a.width; ++x) {
             const bool line = lit.at(x, y, 3) > 0.0f;
             for (int c = 0; c < 4; ++c)
-                if (line) ASSERT_EQ(a.at(x, y, c), b.at(x, y, c)) << "a line pixel changed at " << x << "," << y;
+                if (line) {
+                    ASSERT_EQ(a.at(x, y, c), b.at(x, y, c)) << "a line pixel changed at " << x << "," << y;
+                }
             if (line) continue;
             wall += a.at(x, y, 3) == 1.0f;
             if (on["depth"].at(x, y, 0) < 1.0f) {  // a fragment the image does not show

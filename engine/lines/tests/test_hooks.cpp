@@ -214,6 +214,17 @@ TEST(Hooks, HookNamesStayOnTheShaderPath) {
               std::string::npos);
 }
 
+TEST(Hooks, ParametersOfAnAngleBracketIncludeArePassParameters) {
+    // The compiler inlines #include <x> as it does "x": the @param lines there count as well.
+    write_graphs();
+    write("gain_params.glsl", "uniform float u_gain; // @param 1 [0, 4] \"gain of the colour\"\n");
+    write("gain.frag", "#version 450 core\n#include \"line_hooks.glsl\"\n#include <gain_params.glsl>\n"
+                       "vec4 line_color_hook(vec4 rgba, LinePoint p) { return vec4(rgba.rgb * u_gain, rgba.a); }\n");
+    EXPECT_EQ(error_of("gbuffer_hooked.json", {"lines.color_hook=gain.frag", "lines.gain=0.5"}), "");
+    const std::string msg = error_of("gbuffer_hooked.json", {"lines.color_hook=gain.frag", "lines.gian=0.5"});
+    EXPECT_NE(msg.find("did you mean 'gain'"), std::string::npos) << msg;
+}
+
 TEST(Hooks, AGlslHookIsCompiledAsTheStageItsRoleNeeds) {
     write_graphs();
     write("age_tint.glsl", kAgeHook);  // not .frag: compiled as the colour hook's fragment stage

@@ -8,6 +8,8 @@
 
 namespace pathlet {
 
+const char* direction_name(const PinDecl& p) { return p.internal ? "internal" : p.dir == PinDir::Input ? "in" : "out"; }
+
 const char* to_string(ParamType t) {
     switch (t) {
         case ParamType::Bool: return "bool";
@@ -244,7 +246,7 @@ std::string PassTypeInfo::markdown() const {
     if (params.empty()) s << "| (none) | | | | |\n";
     s << "\n| pin | direction | kind, format | meaning |\n|---|---|---|---|\n";
     for (const auto& p : pins)
-        s << "| `" << p.name << "` | " << (p.internal ? "internal" : p.dir == PinDir::Input ? "in" : "out")
+        s << "| `" << p.name << "` | " << direction_name(p)
           << (p.optional ? " (optional)" : "")
           << " | " << md_pin_shape(p) << " | " << md_cell(p.doc) << " |\n";
     return s.str();

@@ -30,6 +30,12 @@ std::string find_shader_file(const std::string& name, const std::vector<std::str
     throw ShaderError(msg);
 }
 
+std::string include_target(const std::string& line) {
+    static const std::regex include_re(R"(^\s*#\s*include\s+[<"]([^">]+)[">]\s*$)");
+    std::smatch m;
+    return std::regex_match(line, m, include_re) ? m[1].str() : std::string();
+}
+
 namespace {
 
 std::string read_text(const std::string& path) {
@@ -51,18 +57,16 @@ std::string expand(const std::string& path, const std::vector<std::string>& dirs
     std::ostringstream out;
     std::string line;
     int n = 0;
-    static const std::regex include_re(R"(^\s*#\s*include\s+[<"]([^">]+)[">]\s*$)");
     static const std::regex version_re(R"(^\s*#\s*version\b.*$)");
     bool saw_version = false;
     while (std::getline(in, line)) {
         ++n;
-        std::smatch m;
-        if (std::regex_match(line, m, include_re)) {
+        if (const std::string name = include_target(line); !name.empty()) {
             std::vector<std::string> search = {fs::path(path).parent_path().string()};
             search.insert(search.end(), dirs.begin(), dirs.end());
             std::string inc;
             try {
-                inc = find_shader_file(m[1].str(), search);
+                inc = find_shader_file(name, search);
             } catch (const ShaderError& e) {
                 throw ShaderError(path + ":" + std::to_string(n) + ": " + e.what());
             }

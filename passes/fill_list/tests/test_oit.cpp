@@ -194,11 +194,68 @@ TEST(Oit, GBufferOutputsNeedTheDepthAndExcludeCoverage) {
     std::string e = error_of("\"depth\": \"f_depth\",", "", "\"coverage\": \"f_depth\"", "\"coverage\": \"g_depth\"");
     EXPECT_NE(e.find("need 'depth'"), std::string::npos) << e;
     EXPECT_NE(e.find("fill_list"), std::string::npos) << "the error names the pass: " << e;
+    EXPECT_NE(e.find("oit_gbuffer_bad.json:/passes/1: "), std::string::npos) << "... its file and place: " << e;
     // coverage and the G-buffer's depth are one depth attachment.
     e = error_of("\"depth\": \"f_depth\",", "\"depth\": \"f_depth\", \"coverage\": \"f_coverage\",",
                  "\"f_depth\": { \"format\": \"depth24\" },",
                  "\"f_depth\": { \"format\": \"depth24\" }, \"f_coverage\": { \"format\": \"depth24\" },");
     EXPECT_NE(e.find("not both"), std::string::npos) << e;
+}
+
+TEST(Oit, ResolveRefusesPinsThatDoNotGoTogether) {
+    // variant2_oit_ao (the core's AO) edited into wrong wirings of resolve_list's AO sources.
+    std::string base;
+    {
+        std::ifstream in(kSrc + "/graphs/variant2_oit_ao.json");
+        base.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    auto edit = [](std::string text, const std::vector<std::pair<std::string, std::string>>& swaps) {
+        for (const auto& [from, to] : swaps) {
+            const size_t at = text.find(from);
+            EXPECT_NE(at, std::string::npos) << from;
+            if (at != std::string::npos) text.replace(at, from.size(), to);
+        }
+        return text;
+    };
+    auto error_of = [&](const std::string& text) {
+        const std::string path = scratch() + "/resolve_bad.json";
+        std::ofstream(path) << text;
+        try {
+            render(path, {"line_width=1.2", "window=3"}, {"final"});
+        } catch (const std::exception& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::pair<std::string, std::string> records_out{"\"outputs\": { \"nodes\": \"nodes\",",
+                                                          "\"outputs\": { \"nodes\": \"nodes\", \"records\": \"records\","};
+    const std::pair<std::string, std::string> records_res{"\"resources\": {",
+                                                          "\"resources\": { \"records\": { \"kind\": \"buffer\" }, "
+                                                          "\"density\": { \"kind\": \"buffer\", \"persistent\": true },"};
+    const std::pair<std::string, std::string> density_pass{
+        "\"passes\": [", "\"passes\": [ { \"name\": \"line_density\", \"type\": \"line_density\", "
+                         "\"outputs\": { \"density\": \"density\" } },"};
+    const std::string resolve_in = "\"inputs\": { \"heads\": \"heads\", \"nodes\": \"nodes\",";
+    // records without density
+    std::string e = error_of(edit(base, {records_res, records_out, {resolve_in, resolve_in + " \"records\": \"records\","}}));
+    EXPECT_NE(e.find("connect both 'records'"), std::string::npos) << e;
+    EXPECT_NE(e.find("resolve_bad.json:/passes/"), std::string::npos) << "names the file and the pass: " << e;
+    // both sources of AO at once
+    e = error_of(edit(base, {records_res, density_pass, records_out,
+                             {resolve_in, resolve_in + " \"records\": \"records\", \"density\": \"density\","}}));
+    EXPECT_NE(e.find("not both"), std::string::npos) << e;
+    EXPECT_NE(e.find("resolve_list"), std::string::npos) << e;
+    // the front outputs without records
+    e = error_of(edit(base, {{"\"outputs\": { \"color\": \"lit\" } },",
+                              "\"outputs\": { \"color\": \"lit\", \"front_normal_depth\": \"fnd\", \"front_line_id\": "
+                              "\"fli\", \"front_ao\": \"fao\" } },"},
+                             {"\"resources\": {", "\"resources\": { \"fnd\": { \"format\": \"rgba16f\" }, \"fli\": { "
+                                                  "\"format\": \"r32i\" }, \"fao\": { \"format\": \"r16f\" },"},
+                             {"\"outputs\": [ { \"resource\": \"final\"",
+                              "\"outputs\": [ { \"resource\": \"fnd\" }, { \"resource\": \"final\""}}));
+    EXPECT_NE(e.find("the front outputs need 'records'"), std::string::npos) << e;
+    // the unedited graph renders
+    EXPECT_EQ(error_of(base), "no error");
 }
 
 TEST(Oit, OverflowIsDetectedReportedAndRecovered) {

@@ -49,9 +49,9 @@ struct Hooks {
 // The hook files a kit pass's parameters name (color_hook, width_hook).
 Hooks hooks(const PassContext& ctx);
 
-// Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl.
+// Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl (an enum
+// parameter's params.index("colormap") is the constant).
 const std::vector<std::string>& colormaps();
-int colormap_index(const std::string& name);
 
 // The shared line parameters: window, line_width, width_factor, halo, halo_min_px, halo_color,
 // halo_depth, colormap, speed_min, speed_max, background, lod, cull, and the hook files
@@ -81,6 +81,7 @@ PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b, bool optional = fal
 struct GBufferTargets {
     std::vector<std::string> pins;
     std::vector<std::string> defines;
+    std::vector<int> rows;  // per pin, its row of the kit's target table (background value, type)
 };
 GBufferTargets gbuffer_targets(const PassContext& ctx);
 // Binds the targets with the pass's `depth`, clears them to their background values and the

@@ -69,7 +69,7 @@ struct PinOptions {
 struct BufferSize {
     size_t bytes = 0;            // fixed size, or ...
     size_t bytes_per_pixel = 0;  // ... proportional to the output's pixel count, or ...
-    std::function<size_t(const json& params)> from_params;  // ... from the parameters
+    std::function<size_t(const json& params)> from_params = {};  // ... from the parameters
 };
 
 struct PinDecl {
@@ -90,6 +90,8 @@ struct PinDecl {
     // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
     std::function<size_t(const json& params)> bytes_from_params;
 };
+// "in", "out", or "internal" for a pass's own texture (never bound in a graph): how listings name it.
+const char* direction_name(const PinDecl& p);
 
 class Pass;
 struct PassTypeInfo {

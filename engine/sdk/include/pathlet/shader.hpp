@@ -92,5 +92,8 @@ inline std::vector<std::string> whole_exponent(const std::string& name, float va
 // Finds a file on the search path; throws ShaderError listing the directories searched. `name`
 // is a file name: one with a '/' (absolute or relative) or ".." is refused.
 std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs);
+// The file an `#include "x"` or `#include <x>` line names, or "" for any other line: what the
+// program loader inlines, and what the graph's hook scan follows for @param lines.
+std::string include_target(const std::string& line);
 
 }  // namespace pathlet
