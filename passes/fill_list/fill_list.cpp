@@ -28,8 +28,6 @@ namespace oit = pathlet::oit;
 class FillList : public pathlet::Pass {
 public:
     ~FillList() override {
-        if (view_) glDeleteTextures(1, &view_);
-        if (records_view_) glDeleteTextures(1, &records_view_);
         if (fbo_) glDeleteFramebuffers(1, &fbo_);
     }
 
@@ -114,21 +112,8 @@ private:
     // Grows the node buffer to hold `nodes` (never shrinks) and points the buffer texture at it.
     size_t ensure_capacity(pathlet::PassContext& ctx, size_t nodes) {
         pathlet::Buffer b = ctx.grow_buffer("nodes", nodes * oit::kNodeBytes);
-        if (b.id != viewed_) {
-            if (view_) glDeleteTextures(1, &view_);
-            glCreateTextures(GL_TEXTURE_BUFFER, 1, &view_);
-            glTextureBuffer(view_, GL_RGBA32UI, b.id);
-            viewed_ = b.id;
-        }
-        if (records_) {  // one record per node, the same indices
-            pathlet::Buffer r = ctx.grow_buffer("records", b.bytes);
-            if (r.id != records_viewed_) {
-                if (records_view_) glDeleteTextures(1, &records_view_);
-                glCreateTextures(GL_TEXTURE_BUFFER, 1, &records_view_);
-                glTextureBuffer(records_view_, GL_RGBA32UI, r.id);
-                records_viewed_ = r.id;
-            }
-        }
+        view_ = nodes_buffer_view_.of(b);
+        if (records_) records_view_ = records_buffer_view_.of(ctx.grow_buffer("records", b.bytes));  // the same indices
         return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
     }
 
@@ -164,7 +149,8 @@ private:
 
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    GLuint fbo_ = 0, view_ = 0, viewed_ = 0, records_view_ = 0, records_viewed_ = 0;
+    GLuint fbo_ = 0, view_ = 0, records_view_ = 0;  // the views of the current buffers
+    oit::BufferView nodes_buffer_view_, records_buffer_view_;
     bool coverage_ = false, records_ = false, writes_gbuffer_ = false;
     lines::GBufferTargets gbuffer_;  // the bound G-buffer colour targets (only with 'depth')
     size_t max_nodes_ = 1;

@@ -16,8 +16,6 @@ constexpr GLuint kStatsBinding = 9;  // RESOLVE_STATS_BINDING: peak list length,
 class ResolveList : public pathlet::Pass {
 public:
     ~ResolveList() override {
-        if (view_) glDeleteTextures(1, &view_);
-        if (records_view_) glDeleteTextures(1, &records_view_);
         if (stats_) glDeleteBuffers(1, &stats_);
     }
 
@@ -59,13 +57,7 @@ public:
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
-        pathlet::Buffer nodes = ctx.buffer("nodes");
-        if (nodes.id != viewed_) {  // fill_list may have grown it
-            if (view_) glDeleteTextures(1, &view_);
-            glCreateTextures(GL_TEXTURE_BUFFER, 1, &view_);
-            glTextureBuffer(view_, GL_RGBA32UI, nodes.id);
-            viewed_ = nodes.id;
-        }
+        const GLuint nodes = nodes_view_.of(ctx.buffer("nodes"));  // fill_list may have grown it
         const GLuint zero[4] = {0, 0, 0, 0};
         glNamedBufferSubData(stats_, 0, sizeof(zero), zero);
         const bool skip_empty = ctx.connected("coverage");
@@ -83,19 +75,12 @@ public:
             }
         }
         ctx.bind_framebuffer(targets_, skip_empty ? "coverage" : "");
-        prog_->bind_texture("u_nodes", view_);
+        prog_->bind_texture("u_nodes", nodes);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatsBinding, stats_);
         prog_->use();  // heads, ao, core and the parameters by declaration
         prog_->set("u_use_ao", ctx.connected("ao") ? 1 : 0);
         if (vao_on_) {
-            pathlet::Buffer records = ctx.buffer("records");
-            if (records.id != records_viewed_) {
-                if (records_view_) glDeleteTextures(1, &records_view_);
-                glCreateTextures(GL_TEXTURE_BUFFER, 1, &records_view_);
-                glTextureBuffer(records_view_, GL_RGBA32UI, records.id);
-                records_viewed_ = records.id;
-            }
-            prog_->bind_texture("u_records", records_view_);
+            prog_->bind_texture("u_records", records_view_.of(ctx.buffer("records")));
             vao_.bind(ctx, *prog_);
         }
         if (skip_empty) {
@@ -116,7 +101,8 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     std::vector<std::string> targets_;
-    GLuint view_ = 0, viewed_ = 0, stats_ = 0, records_view_ = 0, records_viewed_ = 0;
+    GLuint stats_ = 0;
+    pathlet::oit::BufferView nodes_view_, records_view_;
     pathlet::lines::VolumeAo vao_;
     bool vao_on_ = false;
 };

@@ -53,9 +53,15 @@ void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog, const std::stri
     const Buffer volume = ctx.buffer(pin);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDensityBinding, volume.id);
 
-    // The grid's size from the header (written by the builder this frame).
-    glm::ivec4 dims(0);
-    if (volume.bytes >= kDensityHeaderBytes) glGetNamedBufferSubData(volume.id, 0, sizeof dims, &dims);
+    // The grid's size from the header. It changes only with the builder's setup, which sizes the
+    // buffer by the grid: read back (a wait for the builder) only for a new buffer or size.
+    if (volume.id != header_of_ || volume.bytes != header_bytes_) {
+        header_ = glm::ivec4(0);
+        if (volume.bytes >= kDensityHeaderBytes) glGetNamedBufferSubData(volume.id, 0, sizeof header_, &header_);
+        header_of_ = volume.id;
+        header_bytes_ = volume.bytes;
+    }
+    const glm::ivec4 dims = header_;
     const size_t cells = size_t(std::max(dims.x, 0)) * size_t(std::max(dims.y, 0)) * size_t(std::max(dims.z, 0));
     if (dims.w != 1 || cells == 0 || kDensityHeaderBytes + 4 * cells > volume.bytes)
         throw std::runtime_error("input '" + pin + "' holds no line-density volume (connect a line_density output)");

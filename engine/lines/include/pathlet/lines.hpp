@@ -193,6 +193,9 @@ public:
 private:
     GLuint texture_ = 0;
     glm::ivec3 dims_{0};
+    GLuint header_of_ = 0;  // the buffer whose header was read, its size, and the header's grid size
+    size_t header_bytes_ = 0;
+    glm::ivec4 header_{0};
 };
 
 // Where the lines can be on screen this frame: the scene's bounding box, widened by the line

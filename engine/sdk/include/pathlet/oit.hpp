@@ -3,6 +3,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include <pathlet/pass.hpp>
 
 #include <cstddef>
 #include <string>
@@ -25,5 +26,31 @@ inline void clear_lists(GLuint heads_texture, GLuint counter_buffer) {
     const GLuint zero = 0;
     glClearNamedBufferData(counter_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
+
+// The nodes (or a per-node buffer beside them) as a buffer texture of uvec4 texels, for
+// imageStore / texelFetch. fill_list grows the buffer on overflow, so of() makes a new view
+// whenever the buffer it is given is another one (its id or its size changed).
+class BufferView {
+public:
+    BufferView() = default;
+    BufferView(const BufferView&) = delete;
+    BufferView& operator=(const BufferView&) = delete;
+    ~BufferView() {
+        if (view_) glDeleteTextures(1, &view_);
+    }
+    GLuint of(const Buffer& b) {
+        if (b.id != of_.id || b.bytes != of_.bytes) {
+            if (view_) glDeleteTextures(1, &view_);
+            glCreateTextures(GL_TEXTURE_BUFFER, 1, &view_);
+            glTextureBuffer(view_, GL_RGBA32UI, b.id);
+            of_ = b;
+        }
+        return view_;
+    }
+
+private:
+    GLuint view_ = 0;
+    Buffer of_;
+};
 
 }  // namespace pathlet::oit
