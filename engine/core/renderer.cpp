@@ -70,6 +70,14 @@ glm::ivec2 parse_size(const std::string& text) {
     return {w, h};
 }
 
+void check_render_limits(const RenderOptions& opt) {
+    if (opt.ssaa < 1 || opt.ssaa > 8) throw std::invalid_argument("ssaa must be 1..8 (got " + std::to_string(opt.ssaa) + ")");
+    if (opt.size.x * opt.ssaa > 16384 || opt.size.y * opt.ssaa > 16384)
+        throw std::invalid_argument("ssaa x size exceeds 16384 pixels on a side (" + std::to_string(opt.size.x) + "x" +
+                                    std::to_string(opt.size.y) + " x " + std::to_string(opt.ssaa) + "); lower one of them");
+    if (opt.warmup < 0) throw std::invalid_argument("warmup must be >= 0 (got " + std::to_string(opt.warmup) + ")");
+}
+
 std::string graph_display_name(const GraphFile& g) {
     return g.name.empty() ? fs::path(g.path).stem().string() : g.name;
 }

@@ -53,6 +53,9 @@ struct RenderOptions {
     // those of the whole sequence, so the shards' files together are the unsharded output.
     int shard_index = 0, shard_count = 1;
 };
+// The limits of a render's options, for every caller (the command, Python): ssaa 1..8, size x
+// ssaa at most 16384 pixels a side, warmup >= 0. std::invalid_argument naming the option.
+void check_render_limits(const RenderOptions& opt);
 
 struct RenderResult {
     size_t frames = 0;

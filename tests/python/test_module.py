@@ -182,6 +182,15 @@ def test_quality_numbers_and_image_are_the_commands(pathlet, cli, scene, tmp_pat
     assert pathlet.quality("isl", scene, time="2:2.08:0.04", size=(32, 18), rays=4)["not_measured"].startswith("no AO")
     with pytest.raises(ValueError, match="two frames"):
         pathlet.quality("variant1_lineao", scene, time=2, size=(32, 18))
+    with pytest.raises(ValueError, match=r"rays must be >= 1 \(got 0\)"):
+        pathlet.quality("variant1_lineao", scene, time="2:2.08:0.04", size=(32, 18), rays=0)
+
+
+def test_render_keeps_the_commands_limits(pathlet, scene):
+    with pytest.raises(ValueError, match=r"ssaa must be 1\.\.8 \(got 9\)"):
+        pathlet.render("variant1_lineao", scene, time=2, size=(16, 9), ssaa=9)
+    with pytest.raises(ValueError, match="exceeds 16384 pixels on a side"):
+        pathlet.render("variant1_lineao", scene, time=2, size=(8000, 100), ssaa=4)
 
 
 def test_threads_share_the_one_context_and_the_gil_is_released(pathlet, scene):

@@ -50,9 +50,11 @@ int run(const std::vector<std::string>& argv) {
     data.declare(a);
     if (!a.parse(argv)) return 0;
     q.graph_path = resolve_graph_path(graph);
-    if (q.rays < 1) throw UsageError("--rays must be >= 1");
-    if (q.flicker_rays < 0) throw UsageError("--flicker-rays must be >= 0");
-    if (q.time.times().size() < 2) throw UsageError("--time must give at least two frames");
+    try {
+        quality::check_quality_options(q);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
 
     Runtime rt;
     plugins.load(rt);

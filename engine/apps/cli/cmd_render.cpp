@@ -72,10 +72,11 @@ int run(const std::vector<std::string>& argv) {
 
     opt.graph_path = resolve_graph_path(graph);
     if (shard) opt.shard_index = shard->index, opt.shard_count = shard->count;
-    if (opt.ssaa < 1 || opt.ssaa > 8) throw UsageError("--ssaa must be 1..8 (got " + std::to_string(opt.ssaa) + ")");
-    if (opt.size.x * opt.ssaa > 16384 || opt.size.y * opt.ssaa > 16384)
-        throw UsageError("--size x --ssaa exceeds 16384 pixels on a side; lower one of them");
-    if (opt.warmup < 0) throw UsageError("--warmup must be >= 0");
+    try {
+        check_render_limits(opt);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--") + e.what());
+    }
     if (opt.shard_count > 1 && !video_path.empty())
         throw UsageError("--video with --shard: each shard has only some frames; encode the joined frames (scripts/slurm/)");
     opt.write_images = !no_images;

@@ -324,8 +324,7 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
     opt.warmup = a.warmup;
     opt.write_images = false;
     opt.quiet = true;
-    if (opt.ssaa < 1 || opt.ssaa > 8) throw std::invalid_argument("ssaa must be 1..8, got " + std::to_string(opt.ssaa));
-    if (opt.warmup < 0) throw std::invalid_argument("warmup must be >= 0");
+    check_render_limits(opt);  // the command's limits
     const bool single = a.time.find(':') == std::string::npos && !a.time.empty();
     std::vector<Readback> rbs;
     json timings;
@@ -423,9 +422,7 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
     q.max_distance = max_distance;
     q.depth_tolerance = depth_tolerance;
     q.work_dir = work_dir;
-    if (rays < 1) throw std::invalid_argument("rays must be >= 1");
-    if (flicker_rays < 0) throw std::invalid_argument("flicker_rays must be >= 0");
-    if (q.time.times().size() < 2) throw std::invalid_argument("time must give at least two frames (A:B:STEP)");
+    quality::check_quality_options(q);  // the command's limits
     quality::QualityResult r;
     std::vector<uint8_t> picture;
     {

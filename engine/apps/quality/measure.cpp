@@ -209,6 +209,12 @@ json patch_document(const std::string& graph_path, const json& full, const json&
 
 }  // namespace
 
+void check_quality_options(const QualityOptions& q) {
+    if (q.rays < 1) throw std::invalid_argument("rays must be >= 1 (got " + std::to_string(q.rays) + ")");
+    if (q.flicker_rays < 0) throw std::invalid_argument("flicker rays must be >= 0 (got " + std::to_string(q.flicker_rays) + ")");
+    if (q.time.times().size() < 2) throw std::invalid_argument("time must give at least two frames (A:B:STEP)");
+}
+
 QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOptions& q) {
     QualityResult res;
     // The graph as one document (its "extends" chain merged in) is what the patch looks at.

@@ -54,6 +54,9 @@ struct QualityResult {
 // Throws GraphError (bad graph or --set), std::invalid_argument (fewer than two frames) and
 // whatever rendering throws. The patched graph file is removed however it ends.
 QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOptions& opt);
+// The limits of the options (rays >= 1, flicker rays >= 0, at least two frames), checked before
+// any work by every caller: std::invalid_argument naming the option.
+void check_quality_options(const QualityOptions& opt);
 
 // The per-pixel error as a picture: white 0, red >= 0.5, light grey background.
 Image error_image(const FrameSample& f, const std::vector<float>& abs_error);
