@@ -6,6 +6,7 @@ and --set name, too many lines) it exits 1 and names each problem.
   test_check_docs.py ROOT PATHLET
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -31,9 +32,11 @@ def tree(work, readme):
     return work
 
 
-def replace(old, new, count=1):
-    assert old in README, f"the README no longer holds {old!r}: update this test's mutation"
-    return README.replace(old, new, count)
+def mutate(pattern, new, what, text=README):
+    """`text` with the first match of `pattern` (a regex) replaced by `new` (a template)."""
+    mutated, n = re.subn(pattern, new, text, count=1, flags=re.M)
+    assert n == 1, f"the README has no {what} to break (pattern {pattern!r}): update this test"
+    return mutated
 
 
 def expect(name, readme, only, messages):
@@ -51,22 +54,23 @@ def expect(name, readme, only, messages):
     print(f"{name}: exit {r.returncode}")
 
 
-expect("a link to a missing file", replace("](docs/performance.md)", "](docs/performanse.md)"), "links",
-       ["docs/performanse.md does not exist"])
-expect("a link to a missing heading", replace("#reading-gpu-numbers)", "#reading-gpu-number)"), "links",
-       ["no heading '#reading-gpu-number' in docs/performance.md"])
-expect("a third set-up command", replace("```sh\nscripts/test.sh\n```", "```sh\nscripts/test.sh\n```\n\n```sh\nscripts/install-deps.sh\n```"),
-       "setup", ["expected exactly ['scripts/main.sh', 'scripts/test.sh']"])
-expect("two commands in one set-up block", replace("```sh\nscripts/main.sh\n```", "```sh\nscripts/main.sh\nscripts/build.sh\n```"),
-       "setup", ["a set-up block holds one command, this one 2"])
-broken = README.replace("render variant2_oit --time 9 --size 1920x1080", "render variant2_oit --time 9 --sise 1920x1080", 1)
-broken = broken.replace("--set overlay=false", "--set overlai=false", 1)
-broken = broken.replace("build/bin/pathlet graph variant1_lineao --plan", "build/bin/pathlet grahp variant1_lineao --plan", 1)
-broken = broken.replace("build/bin/pathlet view isl --time 9", "build/bin/pathlet view isl_v2 --time 9", 1)
-assert broken.count("--sise") == 1 and "overlai" in broken and "grahp" in broken and "isl_v2" in broken
-expect("a misspelt option, --set name, command and graph", broken, "commands",
-       ["'pathlet render --sise': no such option", "overlai", "'pathlet grahp': no such command",
-        "'pathlet view isl_v2': no shipped graph"])
+expect("a link to a missing file", mutate(r"\]\((docs/\w+)\.md\)", r"](\1_gone.md)", "link to docs/*.md"), "links",
+       ["_gone.md does not exist"])
+expect("a link to a missing heading", mutate(r"\]\(([\w/.-]+\.md)#([\w-]+)\)", r"](\1#\2-gone)", "link with an anchor"),
+       "links", ["-gone' in "])
+expect("a third set-up command", mutate(r"^```sh\nscripts/test.sh\n```$", "```sh\nscripts/test.sh\n```\n\n```sh\nscripts/install-deps.sh\n```",
+                                        "set-up block"), "setup", ["expected exactly ['scripts/main.sh', 'scripts/test.sh']"])
+expect("two commands in one set-up block", mutate(r"^```sh\nscripts/main.sh\n```$", "```sh\nscripts/main.sh\nscripts/build.sh\n```",
+                                                  "set-up block"), "setup", ["a set-up block holds one command, this one 2"])
+# The command checks run pathlet, so the command mutations go into one copy, each on its own line.
+broken = mutate(r"^build/bin/pathlet ", "build/bin/pathlett ", "pathlet command line")
+broken = mutate(r"^(build/bin/pathlet render .*)--size ", r"\1--sise ", "render line with --size", broken)
+broken = mutate(r"^(build/bin/pathlet render .*--set )(\w+)=", r"\1\2_typo=", "render line with --set", broken)
+broken = mutate(r"^build/bin/pathlet graph ", "build/bin/pathlet grahp ", "graph command line", broken)
+broken = mutate(r"^(build/bin/pathlet view )(\w+)", r"\1\2_gone", "view line with a graph", broken)
+expect("a misspelt pathlet, option, --set name, command and graph", broken, "commands",
+       ["did you mean the pathlet command?", "'pathlet render --sise': no such option", "_typo=", "unknown",
+        "'pathlet grahp': no such command", "_gone': no shipped graph or file of that name"])
 expect("too many lines", README + "more\n" * 451, "length", ["more than 450"])
 
 for f in failures:
