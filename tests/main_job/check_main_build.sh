@@ -13,7 +13,7 @@ case "$step" in scripts/build.sh*) ;; *) echo "FAIL: main.sh's build step is '$s
 (cd "$SRC" && PATHLET_BUILD_DIR="$BUILD" PATHLET_CONFIGURE=0 bash -c "$step" >/dev/null)
 built=$(sed -n 's/.*Built target \([A-Za-z0-9_.+-]*\).*/\1/p' "$BUILD/build.log" | sort -u)
 echo "main.sh builds: $(echo $built)"
-bad=$(echo "$built" | grep -E '^(test_|bench_|fuzz_|_pathlet$|pathlet_python$|pathlet_test|make_seeds$|gtest|gmock|benchmark|kit_probe$|vao_fragment_probe$)' || true)
+bad=$(echo "$built" | grep -E '^(test_|bench_|fuzz_|fixture_|_pathlet$|pathlet_python$|pathlet_test|make_seeds$|gtest|gmock|benchmark|kit_probe$|vao_fragment_probe$)' || true)
 [ -z "$bad" ] || { echo "FAIL: main.sh builds $(echo $bad)"; exit 1; }
 for want in pathlet pathlet_cli pathlet_share lineao overlay gbuffer; do
   echo "$built" | grep -qx "$want" || { echo "FAIL: main.sh does not build $want"; exit 1; }
