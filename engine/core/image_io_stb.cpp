@@ -29,11 +29,10 @@ namespace {
 // Why a file that is not a PNG cannot be written or read here.
 std::string not_in_this_build(const std::string& ext) {
     const bool floats = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
-    const std::string what = floats ? "this build has no " + (ext == ".exr" ? std::string("EXR") : ext.substr(1)) +
-                                          " (float images need OpenImageIO)"
-                                    : "this build reads and writes PNG only";
-    return what + ": it was built without OpenImageIO (PATHLET_WITH_OPENIMAGEIO=OFF, as the lean bundle is); "
-                  "use a .png name, or the full build";
+    return (floats ? "this build has no " + (ext == ".exr" ? std::string("EXR") : ext.substr(1))
+                   : std::string("this build reads and writes PNG only")) +
+           " (built without OpenImageIO: PATHLET_WITH_OPENIMAGEIO=OFF, as the lean bundle is); use a .png name, or "
+           "the full build (the default bundle)";
 }
 
 void append(void* context, void* data, int size) {
