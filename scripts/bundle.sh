@@ -27,7 +27,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SRC=$PWD
-usage() { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; }
 LEAN=0 FROM="" OUT="" CMAKE_ARGS=()
 while [ $# -gt 0 ]; do
   case "$1" in
