@@ -22,9 +22,10 @@ std::string find_shader_file(const std::string& name, const std::vector<std::str
             std::error_code ec;
             if (d == name && fs::is_regular_file(d, ec)) return d;
         }
-        throw ShaderError("shader '" + name +
-                          "' refused: a path reaches a shader only when you named that file for a hook "
-                          "(--set PASS.color_hook=PATH, or Graph.set in Python)");
+        throw ShaderError("shader name '" + name +
+                          "' refused: a shader is a file name (no '/', not '..') looked up on the shader path; a "
+                          "path only when you named that file for a hook (--set PASS.color_hook=PATH, Graph.set in "
+                          "Python)");
     }
     // Otherwise a shader is a file name looked up on the shader path, never a path: a graph names
     // shaders (fullscreen.shader), and "/etc/passwd" or "../../secret" must not reach another file.
