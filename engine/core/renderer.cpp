@@ -31,6 +31,34 @@ TimeRange default_time_range(const Scene& scene) {
     return {scene.lines.time_min(), scene.lines.time_max(), 0.25};
 }
 
+TimeRange default_bench_time(const Scene& scene) {
+    if (scene.lines.timeless) return {0, 0, 0};
+    const double mid = 0.5 * (scene.lines.time_min() + scene.lines.time_max());
+    return {mid, mid, 0};
+}
+
+TimeRange default_quality_time(const Scene& scene) {
+    constexpr double kStep = 0.04, kSpan = 10 * kStep;  // 11 frames
+    const double t0 = scene.lines.timeless ? 0.0 : scene.lines.time_min();
+    const double t1 = scene.lines.timeless ? 0.0 : scene.lines.time_max();
+    if (t1 - t0 < kSpan) return {t0, t1, t1 > t0 ? (t1 - t0) / 10 : kStep};
+    const double start = std::min(0.5 * (t0 + t1), t1 - kSpan);
+    return {start, start + kSpan, kStep};
+}
+
+std::string picked_time_note(const TimeRange& t, const Scene& scene, const std::string& how) {
+    char b[256];
+    const std::vector<double> times = t.times();
+    if (times.size() == 1)
+        std::snprintf(b, sizeof b, "time %g s", t.start);
+    else
+        std::snprintf(b, sizeof b, "time %g..%g s (%zu frames)", t.start, times.back(), times.size());
+    std::string s = b;
+    if (scene.lines.timeless) return s + " (" + scene.source + " has no time)";
+    std::snprintf(b, sizeof b, "%g..%g s", scene.lines.time_min(), scene.lines.time_max());
+    return s + " (" + how + " of " + scene.source + "'s " + b + ", as no time was given)";
+}
+
 TimeRange parse_time_range(const std::string& text) {
     std::vector<double> parts;
     size_t pos = 0;
@@ -122,6 +150,8 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
     RenderResult res;
     GraphFile g = rt.load_graph(opt.graph_path, opt.sets);
+    if (!opt.quiet)
+        for (const auto& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
     for (auto& r : g.resources)
         if (std::find(opt.keep.begin(), opt.keep.end(), r.name) != opt.keep.end()) r.persistent = true;
     // Supersampling: the graph runs at N x N the size with its pixel-measured parameters scaled

@@ -26,6 +26,15 @@ TimeRange parse_time_range(const std::string& text);
 // What a render without a time shows: the data's whole span in 0.25 s steps, or one frame for
 // lines without time (streamlines are drawn whole: more frames would be the same picture).
 TimeRange default_time_range(const Scene& scene);
+// What a bench without a time measures: one moment, the middle of the data's span (the study
+// phantom's 9 s; 0 for lines without time).
+TimeRange default_bench_time(const Scene& scene);
+// What quality without a time measures: 11 frames 0.04 s apart from the middle of the span
+// (the study phantom's 9..9.4 s), moved back to end within it; a shorter span: 11 frames over it.
+TimeRange default_quality_time(const Scene& scene);
+// What a command says when it picked the time: "time 2 s (the middle of SOURCE's 0..4 s, as no
+// time was given)"; `how` says how it was picked ("the middle", "11 frames from the middle").
+std::string picked_time_note(const TimeRange& t, const Scene& scene, const std::string& how);
 glm::ivec2 parse_size(const std::string& text);  // "1280x720"
 
 struct RenderOptions {

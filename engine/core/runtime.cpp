@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 
 namespace pathlet {
+
+namespace fs = std::filesystem;
 
 void Runtime::load_plugins(const std::vector<std::string>& extra_dirs) {
     const std::vector<std::string> dirs = PluginHost::search_path(extra_dirs);
@@ -80,11 +84,36 @@ void Runtime::load_trusted_graph_plugins(GraphFile& g) {
     host.load_dirs(load);
 }
 
+std::vector<std::string> Runtime::user_sets(std::vector<std::string> sets) {
+    std::set<std::string> hooks;  // the hook parameters' names of every loaded type
+    for (const PassTypeInfo* t : registry.all())
+        for (const ParamDecl& d : t->params)
+            if (!d.hook.empty()) hooks.insert(d.name);
+    for (auto& set : sets) {
+        const size_t eq = set.find('=');
+        if (eq == std::string::npos) continue;
+        const std::string lhs = set.substr(0, eq), value = set.substr(eq + 1);
+        const size_t dot = lhs.rfind('.');
+        if (dot == std::string::npos || !hooks.count(lhs.substr(dot + 1)) || value.empty()) continue;
+        const fs::path p = fs::absolute(value).lexically_normal();
+        std::error_code ec;
+        const bool is_path = value.find('/') != std::string::npos;
+        if (!fs::is_regular_file(p, ec)) {
+            if (is_path)
+                throw std::invalid_argument("--set " + set + ": no hook file '" + value + "' (looked for " + p.string() + ")");
+            continue;  // a name on the shader path or next to the graph
+        }
+        set = lhs + "=" + p.string();
+        user_files.insert(p.string());
+    }
+    return sets;
+}
+
 GraphFile Runtime::load_graph(const std::string& path, const std::vector<std::string>& sets) {
     GraphFile g = parse_graph_file(path);
     load_graph_plugins(g);
     std::vector<Diagnostic> diags;
-    apply_overrides(g, sets, registry, diags);
+    apply_overrides(g, sets, registry, diags, user_files);
     if (!diags.empty()) throw GraphError(diags);
     return g;
 }

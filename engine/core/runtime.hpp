@@ -8,6 +8,7 @@
 #include "plugin_host.hpp"
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ struct Runtime {
     std::unique_ptr<GlContext> gl;
     // --trust-graph-plugins: this run loads the plugin folders graph files name, trusted or not.
     bool trust_graph_plugins = false;
+    // Hook files the user named by path on the command line or in Python (absolute, as
+    // user_sets made them): the only files outside the shader path and a graph's folders that a
+    // graph's hook may be (apply_overrides). An experiment file or a viewer script names hooks
+    // as graph files do.
+    std::set<std::string> user_files;
 
     // Loads every plugin on the search path (folders the user chose for this run, so trusted);
     // problems are kept in host.problems().
@@ -33,8 +39,16 @@ struct Runtime {
     // validate: loads the trusted folders only and notes the others in g.untrusted_plugin_dirs,
     // so an unknown pass type is reported as possibly theirs.
     void load_trusted_graph_plugins(GraphFile& g);
+    // The user's own --set texts (the command line, Python's Graph.set) with the paths they give
+    // hooks made the user's: PASS.HOOK=PATH, where HOOK is a hook parameter of a loaded pass
+    // type (color_hook, width_hook), is absolute or relative to the current folder (a plain name
+    // there only when that file exists; else it is a name on the shader path or next to the
+    // graph), made absolute and added to user_files. std::invalid_argument for a path to no file.
+    std::vector<std::string> user_sets(std::vector<std::string> sets);
     // Parses a graph file, loads its plugin folders and applies --set overrides (GraphError
-    // with every problem): what render, view and graph do before compiling.
+    // with every problem; a hook may be one of user_files): what render, view and graph do
+    // before compiling. g.notes says what the author may not expect (a replaced hook's
+    // parameters dropped).
     GraphFile load_graph(const std::string& path, const std::vector<std::string>& sets);
     // Creates the GL context (once) and prints its renderer line unless quiet.
     GlContext& ensure_gl(bool quiet);

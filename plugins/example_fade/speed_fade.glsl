@@ -1,10 +1,10 @@
-#version 450 core
 // Speed-weighted fade: slow flow fades sooner, fast jets keep long tails. From its head a
 // pathlet keeps full strength back to an age that grows with its speed, then fades out over
 // `softness` of its length. One file for every line pipeline: as a colour hook it fades the
 // opacity (fill_list: real transparency), as a width hook it tapers the width (the opaque
-// G-buffer of variant 1: a round tube to the tip, no dithering).
-#include "line_hooks.glsl"
+// G-buffer of variant 1: a round tube to the tip, no dithering). A hook is only its function:
+// the kit puts the version line and its definitions (LinePoint, u_speed_range: line_hooks.glsl)
+// before it.
 
 uniform float u_keep_slow;  // @param 0.15 [0, 1] "age up to which the slowest flow keeps its full strength (0 = the head)"
 uniform float u_keep_fast;  // @param 0.75 [0, 1] "age up to which the fastest flow keeps its full strength"

@@ -338,3 +338,37 @@ TEST(BenchCli, CtrlCLeavesCompleteFilesForFinishedRuns) {
     for (const auto& e : fs::directory_iterator(d / "o"))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "no temp left: " << e.path();
 }
+
+// Without --time, bench and quality measure inside the data's span (the small phantom's 0..4 s;
+// t = 9 s drew nothing) and say which time they took.
+TEST(BenchCli, WithoutATimeBenchAndQualityPickOneInsideTheDataAndSayWhich) {
+    fs::path d = scratch("default_time");
+    CliRun b = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --report " +
+                           (d / "isl").string());
+    ASSERT_EQ(b.code, 0) << b.err;
+    EXPECT_NE(b.err.find("note: time 2 s (the middle of "), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("'s 0..4 s, as no time was given)"), std::string::npos) << b.err;
+    EXPECT_EQ(b.err.find("outside"), std::string::npos) << b.err;
+    const json report = json::parse(slurp(d / "isl.json"));
+    EXPECT_EQ(report["data"][0]["time"], "2");
+    double segments = -1;
+    for (const auto& p : report["runs"][0]["passes"])
+        if (p["name"] == "isl") segments = p["stats"].value("segments", -1.0);
+    EXPECT_GT(segments, 100) << "the frame has lines";
+    // Given, the time is the user's: t = 9 s is outside, warned about, and draws nothing.
+    CliRun late = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --time 9 --report " +
+                              (d / "late").string());
+    ASSERT_EQ(late.code, 0) << late.err;
+    EXPECT_NE(late.err.find("time 9 s is outside"), std::string::npos) << late.err;
+    EXPECT_EQ(late.err.find("note: time"), std::string::npos);
+    for (const auto& p : json::parse(slurp(d / "late.json"))["runs"][0]["passes"]) {
+        if (p["name"] == "isl") {
+            EXPECT_EQ(p["stats"].value("segments", -1.0), 0.0);
+        }
+    }
+
+    CliRun q = pathlet_cli("quality --phantom small --size 48x27 --rays 2 --flicker-rays 0 --out " + (d / "q").string());
+    ASSERT_EQ(q.code, 0) << q.err;
+    EXPECT_NE(q.err.find("note: time 2..2.4 s (11 frames) (11 frames from the middle of "), std::string::npos) << q.err;
+    EXPECT_NE(q.out.find("11 frames 48x27, t=2.00..2.40"), std::string::npos) << q.out;
+}

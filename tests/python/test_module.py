@@ -186,6 +186,54 @@ def test_quality_numbers_and_image_are_the_commands(pathlet, cli, scene, tmp_pat
         pathlet.quality("variant1_lineao", scene, time="2:2.08:0.04", size=(32, 18), rays=0)
 
 
+def _readme_fade(root):
+    """The README's "Writing a fade strategy" GLSL block, as printed."""
+    text = open(os.path.join(root, "README.md")).read()
+    start = text.index("```glsl\n", text.index("Writing a fade strategy")) + len("```glsl\n")
+    return text[start:text.index("\n```", start)] + "\n"
+
+
+def _isl_stats(results):
+    return next(p for p in results.runs[0]["passes"] if p["name"] == "isl")["stats"]
+
+
+def test_without_a_time_bench_and_quality_measure_inside_the_data(pathlet, scene):
+    res = pathlet.bench(["isl"], scene, sizes=["64x36"], frames=1, warmup=0)
+    assert res.report["data"][0]["time"] == "2", "the middle of the small phantom's 0..4 s"
+    assert _isl_stats(res)["segments"] > 100 and _isl_stats(res)["lines"] > 10, "frames with lines in them"
+    # What the old default (t = 9 s) measured: an empty picture.
+    late = pathlet.bench(["isl"], scene, sizes=["64x36"], frames=1, warmup=0, time=9)
+    assert _isl_stats(late)["segments"] == 0
+    q = pathlet.quality("variant1_lineao", scene, size=(32, 18), rays=2, flicker_rays=0)
+    assert q["frames"] == 11 and q["times"] == pytest.approx((2.0, 2.4))
+
+
+def test_a_hook_path_of_yours_and_its_parameters(pathlet, scene, root, tmp_path, monkeypatch):
+    (tmp_path / "my_fade.glsl").write_text(_readme_fade(root))
+    monkeypatch.chdir(tmp_path)  # a path relative to the current folder, as on the command line
+    g = pathlet.Graph("variant2_oit")
+    assert g["fill_list.tail_fade"] == 0.5
+    with pytest.warns(UserWarning, match=r"color_hook 'my_fade.glsl' replaces 'fade_opacity.frag'.*dropped: "
+                                         r"head_fade, tail_fade"):
+        g.set("fill_list.color_hook=my_fade.glsl")
+    assert g["fill_list.color_hook"] == str(tmp_path / "my_fade.glsl")
+    assert g["fill_list.keep_slow"] == 0.15, "the new hook's parameters"
+    with pytest.raises(KeyError):
+        g["fill_list.tail_fade"]
+    with pytest.raises(pathlet.GraphError, match="did you mean 'keep_slow'"):
+        g.set("fill_list.keep_slwo=0.2")
+    faded = pathlet.render(g, scene, time=2, size=(96, 54)).rgba
+    plain = pathlet.render("variant2_oit", scene, time=2, size=(96, 54)).rgba
+    ink = lambda img: float((255 - img[..., 1].astype(np.float64)).sum())  # noqa: E731
+    assert not np.array_equal(faded, plain)
+    assert 0.1 * ink(plain) < ink(faded) < ink(plain), "faded, and there"
+    # The graph keeps the file when the folder changes, and bench takes it too.
+    monkeypatch.chdir(root)
+    assert np.array_equal(pathlet.render(g, scene, time=2, size=(96, 54)).rgba, faded)
+    assert _isl_stats(pathlet.bench([pathlet.Graph("isl").set("isl.color_hook=" + str(tmp_path / "my_fade.glsl"))],
+                                    scene, sizes=["32x18"], frames=1, warmup=0))["segments"] > 0
+
+
 def test_render_keeps_the_commands_limits(pathlet, scene):
     with pytest.raises(ValueError, match=r"ssaa must be 1\.\.8 \(got 9\)"):
         pathlet.render("variant1_lineao", scene, time=2, size=(16, 9), ssaa=9)

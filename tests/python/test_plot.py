@@ -92,8 +92,13 @@ def test_sweep_and_compare_figures(tmp_path):
 
 def test_command_line_and_bench_plots(cli, root, tmp_path):
     exp = tmp_path / "e.json"
-    exp.write_text(json.dumps({"graphs": ["variant1_lineao", "isl"], "data": [{"phantom": "small"}],
-                               "sizes": ["64x36", "96x54"], "time": 2, "frames": 2, "warmup": 0}))
+    # A pass name no shipped graph has: its colour comes from the hash rule of pass_colors.json.
+    (tmp_path / "mine.json").write_text(json.dumps({
+        "version": 1, "resources": {"c": {"format": "rgba8"}},
+        "passes": [{"name": "my_lines", "type": "isl", "outputs": {"color": "c"}}], "outputs": [{"resource": "c"}]}))
+    exp.write_text(json.dumps({"graphs": ["variant1_lineao", "isl", str(tmp_path / "mine.json")],
+                               "data": [{"phantom": "small"}], "sizes": ["64x36", "96x54"], "time": 2, "frames": 2,
+                               "warmup": 0}))
     cli("bench", "--experiment", str(exp), "--out", str(tmp_path / "out"), "--quiet", "--no-images", "--plots")
     for f in ("passes.png", "passes.pdf", "passes.svg"):
         assert (tmp_path / "out" / f).stat().st_size > 1000, f
@@ -101,7 +106,7 @@ def test_command_line_and_bench_plots(cli, root, tmp_path):
     from pathlet import plot
     svg = (tmp_path / "out" / "passes.svg").read_text()
     legend = dict((n, c) for c, n in re.findall(r'width="12" height="12" fill="(#[0-9a-f]{6})"/><text[^>]*>([^<]*)<', svg))
-    assert legend and legend == plot.pass_colors(list(legend))
+    assert "my_lines" in legend and legend == plot.pass_colors(list(legend))
     env = dict(os.environ)
     r = subprocess.run([sys.executable, "-m", "pathlet.plot", str(tmp_path / "nope.json")], capture_output=True,
                        text=True, env=env)

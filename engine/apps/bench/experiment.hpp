@@ -30,7 +30,7 @@ struct Experiment {
     std::string name, description;
     std::vector<ExperimentGraph> graphs;
     std::vector<std::string> sizes{"1280x720"};  // "WxH"
-    std::string time = "9";                      // "T" or "A:B:STEP"
+    std::string time;                            // "T" or "A:B:STEP"; "": the middle of each data set's span
     int frames = 10, warmup = 3;
     std::vector<std::string> sets;  // for every graph
     std::string camera;             // camera path file, relative to the experiment file; "" = frame the data

@@ -83,11 +83,15 @@ Results::Results(const Experiment& e, const std::string& command, const std::str
     if (shard.active()) j_["shard"] = {{"index", shard.index}, {"count", shard.count}};
 }
 
-void Results::add_data(const Scene& scene) {
+void Results::add_data(const Scene& scene, const TimeRange& time) {
+    char t[96];
+    if (time.times().size() == 1) std::snprintf(t, sizeof t, "%g", time.start);
+    else std::snprintf(t, sizeof t, "%g:%g:%g", time.start, time.end, time.step);
     j_["data"].push_back({{"source", scene.source},
                           {"lines", scene.lines.line_count()},
                           {"points", scene.lines.point_count()},
-                          {"mesh_triangles", scene.mesh ? scene.mesh->index.size() / 3 : 0}});
+                          {"mesh_triangles", scene.mesh ? scene.mesh->index.size() / 3 : 0},
+                          {"time", t}});
 }
 
 void Results::add_run(size_t index, const Run& run, const ExperimentGraph& g, const std::string& graph_path,

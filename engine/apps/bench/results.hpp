@@ -3,9 +3,10 @@
 // report.hpp derives every other file (CSV, SVG) from it.
 //
 //   {"experiment", "description", "command", "machine": {host, cpu, cores}, "gl_renderer",
-//    "graphs": {label: {graph, path, fnv1a64}}, "sizes", "time", "frames", "warmup", "sweep_param",
-//    "planned_runs", "complete", "shard": {index, count} (a shard only), "timing_backend",
-//    "data": [{source, lines, points, mesh_triangles}],
+//    "graphs": {label: {graph, path, fnv1a64}}, "sizes", "time" ("" = the middle of each data
+//    set's span), "frames", "warmup", "sweep_param", "planned_runs", "complete",
+//    "shard": {index, count} (a shard only), "timing_backend",
+//    "data": [{source, lines, points, mesh_triangles, time (as rendered: "T" or "A:B:STEP")}],
 //    "runs": [{"meta": {index, label, graph_label, graph, graph_path, size, sweep_value, sets, data,
 //                       renderer, image?}, profiler summary..., "frames": [...]}]}
 #pragma once
@@ -13,6 +14,7 @@
 #include "bench/experiment.hpp"
 #include "bench/shard.hpp"
 #include "profiler/profiler.hpp"
+#include "renderer.hpp"
 
 #include <pathlet/scene.hpp>
 
@@ -27,8 +29,8 @@ class Results {
 public:
     Results(const Experiment& e, const std::string& command, const std::string& gl_renderer, const nlohmann::json& graphs,
             size_t planned_runs, const Shard& shard);
-    // The data set the next runs draw.
-    void add_data(const Scene& scene);
+    // The data set the next runs draw, at `time`.
+    void add_data(const Scene& scene, const TimeRange& time);
     // A finished run: its place in the plan, what it drew, its timings and representative image.
     void add_run(size_t index, const Run& run, const ExperimentGraph& g, const std::string& graph_path,
                  const std::vector<std::string>& sets, const std::string& data, const Profiler& p, const std::string& image);

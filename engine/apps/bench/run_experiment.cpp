@@ -50,7 +50,7 @@ std::vector<std::string> run_sets(const Experiment& e, const Run& run) {
 
 json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& s, const ExperimentHooks& hooks) {
     RenderOptions base;
-    base.time = parse_time_range(e.time);
+    if (!e.time.empty()) base.time = parse_time_range(e.time);
     base.timing = s.timing;
     base.repeat = e.frames;
     base.warmup = e.warmup;
@@ -87,7 +87,11 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
             scene.reset();
             scene = hooks.load_data(run.data);
             scene_of = run.data;
-            results.add_data(*scene);
+            if (e.time.empty()) {  // a time inside this data's span, said
+                base.time = default_bench_time(*scene);
+                std::fprintf(stderr, "note: %s\n", picked_time_note(base.time, *scene, "the middle").c_str());
+            }
+            results.add_data(*scene, base.time);
             for (double t : base.time.times())  // an empty picture times nothing worth knowing
                 if (t < scene->lines.time_min() || t > scene->lines.time_max()) {
                     std::fprintf(stderr, "warning: time %g s is outside %s's %g..%g s: few or no lines are drawn\n", t,

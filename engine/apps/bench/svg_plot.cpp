@@ -1,5 +1,9 @@
 #include "svg_plot.hpp"
 
+#include "bench/pass_colors_json.hpp"
+
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -66,23 +70,19 @@ std::string y_axis(double x0, double y0, double plot_h, double plot_w, double to
 }  // namespace
 
 std::map<std::string, std::string> pass_colors(const std::vector<std::string>& names) {
-    // Tableau 20; the shipped graphs' passes first, with fixed places (as in pathlet/plot.py).
-    static const char* palette[] = {"#4e79a7", "#a0cbe8", "#f28e2b", "#ffbe7d", "#59a14f", "#8cd17d", "#b6992d",
-                                    "#f1ce63", "#499894", "#86bcb6", "#e15759", "#ff9d9a", "#79706e", "#bab0ac",
-                                    "#d37295", "#fabfd2", "#b07aa1", "#d4a6c8", "#9d7660", "#d7b5a6"};
-    static const std::map<std::string, int> known = {
-        {"gbuffer", 0},   {"gauss_pyramid", 1}, {"lineao", 2},      {"bilateral", 3},       {"isl", 4},
-        {"temporal_ao", 5}, {"edge_aa", 6},     {"overlay", 7},     {"fade_core", 8},       {"clear_list", 9},
-        {"geometric_fade", 10}, {"fill_list", 11}, {"wall", 12},    {"resolve_list", 16}};
-    constexpr size_t n = sizeof palette / sizeof palette[0];
+    // The rule and its table are those of pathlet/pass_colors.json, which pathlet/plot.py reads too.
+    static const nlohmann::json table = nlohmann::json::parse(kPassColorsJson);
+    const auto& palette = table.at("palette");
+    const auto& places = table.at("places");
+    const size_t n = palette.size();
     std::vector<bool> taken(n, false);
     for (const auto& name : names)
-        if (auto it = known.find(name); it != known.end()) taken[size_t(it->second)] = true;
+        if (places.contains(name)) taken[places[name].get<size_t>()] = true;
     std::map<std::string, std::string> out;
     for (const auto& name : names) {
         if (out.count(name)) continue;
-        if (auto it = known.find(name); it != known.end()) {
-            out[name] = palette[it->second];
+        if (places.contains(name)) {
+            out[name] = palette[places[name].get<size_t>()];
             continue;
         }
         uint32_t h = 0x811C9DC5u;

@@ -21,7 +21,8 @@ struct Bar {
 std::string stacked_bars_svg(const std::string& title, const std::vector<Bar>& bars);
 
 // Pass name -> colour: shipped passes fixed, others hashed (FNV-1a) into the colours left
-// free, the next free one on a collision. pathlet/plot.py has the same rule and table.
+// free, the next free one on a collision: the rule and table of pathlet/pass_colors.json (the
+// Python package's), which pathlet/plot.py follows too.
 std::map<std::string, std::string> pass_colors(const std::vector<std::string>& names);
 
 struct Series {

@@ -41,7 +41,7 @@ struct BenchOptions {
     std::optional<Shard> shard;
     std::vector<std::string> merge, sets;
     double threshold = 0.5;
-    Given<std::string> sizes{"1280x720"}, time{"9"};
+    Given<std::string> sizes{"1280x720"}, time{""};
     Given<int> frames{10}, warmup{3};
     TimingBackend timing = TimingBackend::Auto;
     bool no_images = false, plots = false, quiet = false;
@@ -60,7 +60,9 @@ struct BenchOptions {
                     "--compare: relative slow-down that counts (0.5 = 50 %; on this shared 2-core machine plain\n"
                     "re-runs drift by up to ~40 %, so use 0.1 only on a quiet, dedicated node)")
             .option("size", sizes, "WxH[,WxH...]", "output sizes to measure (overrides the experiment's)")
-            .option("time", time, "T|A:B:STEP", "animation time(s) rendered (overrides the experiment's)")
+            .option("time", time, "T|A:B:STEP",
+                    "animation time(s) rendered (overrides the experiment's); default: the middle of the data's time "
+                    "span (the study phantom's 9 s)")
             .option("frames", frames, "N", "measured frames per time, after warm-up (overrides the experiment's)")
             .option("warmup", warmup, "N", "frames before timing starts (overrides the experiment's)")
             .multi("set", sets, "[GRAPH:]NAME=VALUE",
@@ -208,7 +210,7 @@ Plan make_plan(const BenchOptions& o, const std::vector<std::string>& argv) {
     if (e.frames < 1 || e.warmup < 0) throw UsageError("--frames must be >= 1 and --warmup >= 0");
     try {
         for (const auto& s : e.sizes) parse_size(s);
-        parse_time_range(e.time);
+        if (!e.time.empty()) parse_time_range(e.time);
     } catch (const std::invalid_argument& ex) {
         throw UsageError(e.name + ": " + ex.what());
     }
@@ -359,9 +361,10 @@ int run(const std::vector<std::string>& argv) {
     json baseline;
     if (!o.compare.empty()) baseline = text::read_json_file(o.compare, "the baseline");  // before the run
 
-    const Plan plan = make_plan(o, argv);
     Runtime rt;
     o.plugins.load(rt);
+    o.sets = rt.user_sets(o.sets);  // hook paths the user gave, before the plan takes them
+    const Plan plan = make_plan(o, argv);
     g_interrupted = 0;
     struct RestoreSignal {
         void (*old)(int);

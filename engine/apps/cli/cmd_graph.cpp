@@ -67,6 +67,7 @@ int run(const std::vector<std::string>& argv) {
     if (!a.parse(argv)) return 0;
     Runtime rt;
     plugins.load(rt);
+    sets = rt.user_sets(sets);
     std::string path = resolve_graph_path(graph);
     try {
         if (expanded) {  // what the file stands for, before --set and validation
@@ -74,6 +75,7 @@ int run(const std::vector<std::string>& argv) {
             return 0;
         }
         GraphFile g = rt.load_graph(path, sets);
+        print_graph_notes(g);
         CompiledGraph cg = compile_graph(g, rt.registry, size);
         if (!dot.empty()) {
             const std::string text = graph_to_dot(cg, g);

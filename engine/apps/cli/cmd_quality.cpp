@@ -27,11 +27,12 @@ int run(const std::vector<std::string>& argv) {
     PluginOptions plugins;
     SceneOptions data;
     quality::QualityOptions q;
-    q.time = parse_time_range("9:9.4:0.04");
     q.size = {320, 180};
     q.work_dir = "out/quality";
     a.positional("GRAPH", graph, "graph file or shipped graph name (default: variant1_lineao)", false)
-        .option("time", q.time, "A:B:STEP", "animation times (frames at A, A+STEP, ... <= B)");
+        .option("time", q.time, "A:B:STEP",
+                "animation times (frames at A, A+STEP, ... <= B); default: 11 frames 0.04 s apart from the middle of "
+                "the data's time span (the study phantom's 9:9.4:0.04)");
     declare_size(a, q.size, "output size in pixels");
     bool images = false;
     a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
@@ -58,6 +59,7 @@ int run(const std::vector<std::string>& argv) {
 
     Runtime rt;
     plugins.load(rt);
+    q.sets = rt.user_sets(q.sets);
     Scene scene = data.load(true);
     const quality::QualityResult r = quality::measure_quality(rt, scene, q);
     if (!r.not_measured.empty()) {

@@ -91,6 +91,7 @@ int run(const std::vector<std::string>& argv) {
 
     Runtime rt;
     plugins.load(rt);
+    opt.sets = rt.user_sets(opt.sets);
     Scene scene = data.load(opt.quiet);
     opt.time = time ? *time : default_time_range(scene);
     try {

@@ -1,6 +1,7 @@
 // pathlet validate FILE...: every problem in each graph at once, with file and JSON pointer.
 #include "commands.hpp"
 #include "common_options.hpp"
+#include "graph_errors.hpp"
 #include "graph/graph_model.hpp"
 #include "plugin_trust.hpp"
 #include "runtime.hpp"
@@ -24,6 +25,7 @@ int run(const std::vector<std::string>& argv) {
     if (!a.parse(argv)) return 0;
     Runtime rt;
     plugins.load(rt);
+    sets = rt.user_sets(sets);
     int bad = 0;
     for (const auto& f : files) {
         std::vector<Diagnostic> diags;
@@ -33,7 +35,8 @@ int run(const std::vector<std::string>& argv) {
             for (const auto& u : g.untrusted_plugin_dirs)
                 std::fprintf(stderr, "note: %s: plugin folder %s is not trusted; its plugins were not loaded (%s)\n",
                              f.c_str(), u.dir.c_str(), trust_command(u.dir).c_str());
-            apply_overrides(g, sets, rt.registry, diags);
+            apply_overrides(g, sets, rt.registry, diags, rt.user_files);
+            print_graph_notes(g);
             auto more = validate_graph(g, rt.registry);
             diags.insert(diags.end(), more.begin(), more.end());
         } catch (const GraphError& e) {

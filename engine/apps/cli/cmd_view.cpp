@@ -480,6 +480,7 @@ int run(const std::vector<std::string>& argv) {
     win.open(o.size, /*vsync=*/o.script.empty(), &input, install_callbacks);
     Runtime rt;
     o.plugins.load(rt);
+    o.sets = rt.user_sets(o.sets);
     const Scene scene = o.data.load(false);
     rt.gl = GlContext::adopt_current("GLFW window");
     std::fprintf(stderr, "%s\n", rt.gl->summary().c_str());

@@ -9,6 +9,11 @@
 
 namespace pathlet::cli {
 
+// What resolving a graph did that its author may not expect (GraphFile::notes), on stderr.
+inline void print_graph_notes(const GraphFile& g) {
+    for (const auto& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+}
+
 // Prints the report to stderr; returns 1, the exit status of failed work.
 inline int report_graph_error(const GraphError& e, const Runtime& rt) {
     for (const auto& d : e.diagnostics) std::fprintf(stderr, "%s\n", d.str().c_str());

@@ -12,6 +12,7 @@
 #include "cli/scene_args.hpp"
 #include "executor.hpp"
 #include "formats.hpp"
+#include "graph/hook_params.hpp"
 #include "image_io.hpp"
 #include "io/mesh_io.hpp"
 #include "io/raw_polylines.hpp"
@@ -26,6 +27,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace py = pybind11;
@@ -214,16 +216,33 @@ json describe_graph(Runtime& rt, const std::string& path, const std::vector<std:
     json passes = json::array();
     for (const auto& p : g.passes) {
         json params = json::object();
-        if (const PassTypeInfo* t = rt.registry.find(p.type))
-            for (const auto& d : t->params) {
+        auto value_of = [&](const ParamDecl& d, json* variable) {
+            json value = p.params.contains(d.name) ? p.params[d.name] : d.def;
+            if (value.is_string() && !value.get<std::string>().empty() && value.get<std::string>()[0] == '$') {
+                if (variable) *variable = value.get<std::string>().substr(1);
+                const std::string name = value.get<std::string>().substr(1);
+                for (const auto& v : g.variables)
+                    if (v.name == name) value = v.value;
+            }
+            return value;
+        };
+        std::shared_ptr<const PassTypeInfo> type;  // with the parameters its hooks declare
+        if (const PassTypeInfo* t = rt.registry.find(p.type)) {
+            json hooks = json::object();
+            for (const auto& d : t->params)
+                if (!d.hook.empty()) hooks[d.name] = value_of(d, nullptr);
+            try {
+                type = instance_type(*t, hooks, g.dirs);
+            } catch (const HookError&) {  // named when the graph is compiled
+                type = std::shared_ptr<const PassTypeInfo>(t, [](const PassTypeInfo*) {});
+            }
+        }
+        if (type)
+            for (const auto& d : type->params) {
                 json x = decl_json(d);
-                json value = p.params.contains(d.name) ? p.params[d.name] : d.def;
-                if (value.is_string() && !value.get<std::string>().empty() && value.get<std::string>()[0] == '$') {
-                    x["variable"] = value.get<std::string>().substr(1);
-                    for (const auto& v : g.variables)
-                        if (v.name == x["variable"]) value = v.value;
-                }
-                x["value"] = value;
+                json variable;
+                x["value"] = value_of(d, &variable);
+                if (!variable.is_null()) x["variable"] = variable;
                 params[d.name] = x;
             }
         passes.push_back({{"name", p.name}, {"type", p.type}, {"enabled", p.enabled}, {"params", params}});
@@ -234,7 +253,7 @@ json describe_graph(Runtime& rt, const std::string& path, const std::vector<std:
     for (const auto& o : g.outputs) outputs.push_back(o.resource);
     return {{"path", g.path},         {"name", graph_display_name(g)}, {"description", g.description},
             {"variables", vars},      {"passes", passes},              {"resources", resources},
-            {"outputs", outputs}};
+            {"outputs", outputs},     {"notes", g.notes}};
 }
 
 // ---- rendering ------------------------------------------------------------------------------
@@ -318,6 +337,7 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
     opt.sets = a.sets;
     opt.size = parse_size(a.size);
     opt.time = a.time.empty() ? default_time_range(*scene) : parse_time_range(a.time);
+    if (a.time.empty()) std::fprintf(stderr, "note: %s\n", picked_time_note(opt.time, *scene, "the whole span").c_str());
     opt.timing = parse_timing_backend(a.timing);
     opt.camera_path = a.camera;
     opt.orbit_deg_per_s = a.orbit;
@@ -383,7 +403,7 @@ py::object run_bench(const BenchArgs& a, const std::optional<SceneRef>& scene) {
     e.sets.insert(e.sets.end(), a.sets.begin(), a.sets.end());
     if (e.frames < 1) throw std::invalid_argument("frames must be >= 1");
     for (const auto& s : e.sizes) parse_size(s);
-    parse_time_range(e.time);
+    if (!e.time.empty()) parse_time_range(e.time);
     if (scene) e.data.clear();  // a scene given replaces the experiment's data sets, as --data does
     cli::bench::ExperimentSettings how;
     how.timing = parse_timing_backend(a.timing);
@@ -418,7 +438,7 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
     q.graph_path = graph;
     q.sets = sets;
     q.size = parse_size(size);
-    q.time = parse_time_range(time);
+    if (!time.empty()) q.time = parse_time_range(time);
     q.rays = rays;
     q.max_distance = max_distance;
     q.depth_tolerance = depth_tolerance;
@@ -517,6 +537,11 @@ PYBIND11_MODULE(_pathlet, m) {
     });
 
     m.def("resolve_graph", &resolve_graph_path);
+    // The user's --set texts with the hook paths they give made absolute and allowed (Runtime::user_sets).
+    m.def("user_sets", [](const std::vector<std::string>& sets) {
+        py::gil_scoped_release nogil;
+        return GlThread::get().call([&](Runtime& rt) { return rt.user_sets(sets); });
+    });
     m.def("describe_graph", [](const std::string& path, const std::vector<std::string>& sets) {
         json j;
         {

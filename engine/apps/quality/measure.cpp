@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -213,7 +214,7 @@ void check_quality_options(const QualityOptions& q) {
     RayTracedAo::require();  // before any work, in a build without Embree
     if (q.rays < 1) throw std::invalid_argument("rays must be >= 1 (got " + std::to_string(q.rays) + ")");
     if (q.flicker_rays < 0) throw std::invalid_argument("flicker rays must be >= 0 (got " + std::to_string(q.flicker_rays) + ")");
-    if (q.time.times().size() < 2) throw std::invalid_argument("time must give at least two frames (A:B:STEP)");
+    if (q.time && q.time->times().size() < 2) throw std::invalid_argument("time must give at least two frames (A:B:STEP)");
 }
 
 QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOptions& q) {
@@ -227,10 +228,11 @@ QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOpti
         res.not_measured = patch.why_not;
         return res;
     }
-    if (q.time.times().size() < 2) throw std::invalid_argument("--time must give at least two frames");
     RenderOptions opt;
+    opt.time = q.time ? *q.time : default_quality_time(scene);
+    if (!q.time) std::fprintf(stderr, "note: %s\n", picked_time_note(opt.time, scene, "11 frames from the middle").c_str());
+    if (opt.time.times().size() < 2) throw std::invalid_argument("--time must give at least two frames");
     opt.size = q.size;
-    opt.time = q.time;
     opt.sets = q.sets;
     opt.write_images = false;
     opt.quiet = true;

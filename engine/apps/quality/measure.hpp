@@ -15,6 +15,7 @@
 
 #include <pathlet/scene.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct QualityOptions {
     std::string graph_path;         // a graph file (resolve shipped names first)
     std::vector<std::string> sets;  // --set overrides
     glm::ivec2 size{320, 180};
-    TimeRange time;                 // at least two frames
+    std::optional<TimeRange> time;  // at least two frames; none: default_quality_time(scene), said on stderr
     int rays = 256;                 // ray-traced AO: rays per pixel
     float max_distance = 10;        // ray length in line widths
     float depth_tolerance = 0.002f; // flicker: largest change of linear depth that counts as unchanged

@@ -35,6 +35,7 @@ std::vector<std::string> graph_and_shader_files(const std::string& graph, const 
     std::set<std::string> files{graph};
     for (const auto& d : shader_dirs) {
         std::error_code ec;
+        if (fs::is_regular_file(d, ec)) files.insert(d);  // a hook file the user named by path
         for (fs::directory_iterator it(d, ec), end; !ec && it != end; it.increment(ec)) {
             const std::string ext = it->path().extension().string();
             if (ext == ".glsl" || ext == ".vert" || ext == ".geom" || ext == ".frag" || ext == ".comp")

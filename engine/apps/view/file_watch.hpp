@@ -29,8 +29,8 @@ private:
     std::map<std::string, State> state_;
 };
 
-// The files a graph depends on for hot reload: the graph itself and every .glsl/.vert/.geom/
-// .frag in the given shader folders.
+// The files a graph depends on for hot reload: the graph itself, every .glsl/.vert/.geom/.frag
+// in the given shader folders, and the files among them (hooks the user named by path).
 std::vector<std::string> graph_and_shader_files(const std::string& graph, const std::vector<std::string>& shader_dirs);
 
 }  // namespace pathlet::view

@@ -4,6 +4,7 @@
 #include "view/file_watch.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <set>
 
 namespace pathlet::view {
@@ -29,6 +30,7 @@ std::vector<std::string> ViewSession::sets() const {
 std::unique_ptr<ViewSession::Built> ViewSession::build(const std::vector<std::string>& sets) const {
     auto b = std::make_unique<Built>();
     b->g = rt_.load_graph(path_, sets);
+    for (const auto& n : b->g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
     b->cg = compile_graph(b->g, rt_.registry, size_);
     if (b->cg.outputs.empty()) throw std::runtime_error(path_ + ": the graph has no output to show");
     b->prof = std::make_unique<Profiler>();

@@ -76,7 +76,8 @@ void merge_named(json& base, const json& over) {
 
 class Merger {
 public:
-    Merger(std::string file, std::vector<Diagnostic>& diags) : file_(std::move(file)), diags_(diags) {}
+    Merger(std::string file, std::vector<Diagnostic>& diags, std::vector<ExtendsChange>& changes)
+        : file_(std::move(file)), diags_(diags), changes_(changes) {}
 
     void passes(json& base, const json& over) {
         if (!base.is_array()) base = json::array();
@@ -116,6 +117,11 @@ public:
                 if (k == "name" || k == "remove") continue;
                 if ((k == "params" || k == "inputs" || k == "outputs") && v.is_object()) {
                     if (!b.contains(k) || !b[k].is_object()) b[k] = json::object();
+                    if (k == "params") {  // kept: a replaced hook's parameters are known only with the types
+                        ExtendsChange c{name, {file_, b[k], {}}};
+                        for (const auto& [key, value] : v.items()) c.change.keys.push_back(key);
+                        changes_.push_back(std::move(c));
+                    }
                     merge_keys(b[k], v);
                 } else if (v.is_null()) {
                     b.erase(k);
@@ -130,12 +136,15 @@ private:
     void error(const std::string& ptr, const std::string& msg) { diags_.push_back({file_, ptr, msg}); }
     std::string file_;
     std::vector<Diagnostic>& diags_;
+    std::vector<ExtendsChange>& changes_;
 };
 
 }  // namespace
 
 json graph_detail::expand_extends(json root, const std::string& path, std::vector<std::string>& dirs,
-                    std::vector<std::string>& chain) {
+                    std::vector<std::string>& chain, std::vector<ExtendsChange>* changes) {
+    std::vector<ExtendsChange> ignored;
+    if (!changes) changes = &ignored;
     dirs.push_back(fs::path(path).parent_path().lexically_normal().string());
     if (!root.is_object() || !root.contains("extends")) return root;
     const json ext = root["extends"];
@@ -157,7 +166,7 @@ json graph_detail::expand_extends(json root, const std::string& path, std::vecto
     if (chain.size() >= 16) throw GraphError({{path, "/extends", "extends nested deeper than 16 graphs"}});
     chain.push_back(base_file);
     json base = read_graph_json(base_file);
-    base = expand_extends(std::move(base), base_file, dirs, chain);
+    base = expand_extends(std::move(base), base_file, dirs, chain, changes);
     if (!base.is_object()) throw GraphError({{base_file, "", "a graph file must be a JSON object"}});
 
     // The base's plugin folders stay relative to the base's own file.
@@ -167,7 +176,7 @@ json graph_detail::expand_extends(json root, const std::string& path, std::vecto
                 d = (fs::path(base_file).parent_path() / d.get<std::string>()).lexically_normal().string();
 
     std::vector<Diagnostic> diags;
-    Merger m(path, diags);
+    Merger m(path, diags, *changes);
     for (const auto& [k, v] : root.items()) {
         if ((k == "variables" || k == "resources") && v.is_object()) {
             if (!base.contains(k) || !base[k].is_object()) base[k] = json::object();

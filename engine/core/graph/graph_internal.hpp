@@ -7,6 +7,7 @@
 #include "util/text.hpp"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,13 +80,30 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags);
 std::shared_ptr<const PassTypeInfo> pass_instance_type(const GraphFile& g, const PassDecl& p, const PassTypeInfo& t,
                                                        std::string& err, std::string& err_pointer);
 
+// Where `change` (by an extending graph, --set or Python) replaced a hook of pass `p` (of
+// registry type `t`): drops the parameters the replaced hook declares that were set before the
+// change and that the pass's new type lacks, and the variables that fed only them, with a note
+// in g.notes (graph_hook_swap.cpp).
+void swap_hook_params(GraphFile& g, PassDecl& p, const PassTypeInfo& t, const PassDecl::ParamsChange& change);
+
+// `g` itself, or, when graphs extending its base replaced hooks not yet settled
+// (settle_hook_swaps: a graph validated without apply_overrides), a settled copy in `copy`.
+const GraphFile& settle_pending_swaps(const GraphFile& g, const PassRegistry& reg, std::optional<GraphFile>& copy);
+
 // ---- reading (graph_parse.cpp, graph_extends.cpp) -----------------------------------------
 // A graph file's JSON (comments allowed, nesting and size capped), errors placed by line.
 json graph_json_from_text(const std::string& text, const std::string& path);
 json read_graph_json(const std::string& path);
+// A pass's params changed by an extending graph (PassDecl::changes), for the pass of that name.
+struct ExtendsChange {
+    std::string pass;
+    PassDecl::ParamsChange change;
+};
 // `root` (read from `path`) with its "extends" chain merged in; `dirs` gets the folders of the
-// file and its bases, `chain` the base files.
-json expand_extends(json root, const std::string& path, std::vector<std::string>& dirs, std::vector<std::string>& chain);
+// file and its bases, `chain` the base files, `changes` the params each extending file changed
+// (deepest base first).
+json expand_extends(json root, const std::string& path, std::vector<std::string>& dirs, std::vector<std::string>& chain,
+                    std::vector<ExtendsChange>* changes = nullptr);
 
 // ---- values -----------------------------------------------------------------------------
 const VariableDecl* find_variable(const GraphFile& g, const std::string& name);

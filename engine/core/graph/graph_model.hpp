@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -70,6 +71,16 @@ struct PassDecl {
     std::map<std::string, std::string> outputs;  // pin -> "resource"
     json enabled = true;                         // bool or "$variable"
     std::string pointer;
+    // How graphs that extend the pass's graph changed its params: what they were before and
+    // which keys the extending file set. Where a change replaced a hook (color_hook,
+    // width_hook), the replaced hook's parameters set before it are dropped, with a note, once
+    // the pass types are known (apply_overrides; validate_graph and compile_graph too).
+    struct ParamsChange {
+        std::string by;                 // the extending graph file
+        json before = json::object();   // params before the change
+        std::vector<std::string> keys;  // the keys it set
+    };
+    std::vector<ParamsChange> changes;
 };
 
 struct OutputDecl {
@@ -88,8 +99,12 @@ struct GraphFile {
     std::vector<OutputDecl> outputs;
     std::vector<std::string> plugin_dirs;  // "plugin_dirs": folders of plugins, resolved against the file's folder
     // The file's folder and those of the graphs it extends: hook files next to a graph are
-    // found there (after the shader path).
+    // found there (after the shader path). Then the hook files the user named by path (--set,
+    // Python: apply_overrides), each an entry of its own: found by that path, and only it.
     std::vector<std::string> dirs;
+    // What resolving the graph did that its author may not expect (a replaced hook's
+    // parameters dropped), for the command to print as notes.
+    std::vector<std::string> notes;
     std::vector<std::string> extends;      // the chain of base graphs, nearest first (file paths)
     // Folders of plugin_dirs whose plugins were not loaded because the folder is not trusted
     // (Runtime::load_graph_plugins, validate): "unknown pass type" says so instead of guessing a typo.
@@ -171,9 +186,17 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path_for_
 // The JSON a graph file stands for: with the graphs it extends merged in (graph --expanded).
 json expanded_graph_json(const std::string& path);
 
-// Applies "--set name=value" / "--set pass.param=value" overrides; problems go to `diags`.
+// Applies "--set name=value" / "--set pass.param=value" overrides; problems go to `diags`. A
+// hook parameter may be an absolute path only when it is one of `user_files`, the hook files
+// the user named on the command line or in Python (Runtime::user_sets); a set that replaces
+// a hook drops the replaced hook's parameters (a note in g.notes). Settles the hook swaps of
+// `extends` first (settle_hook_swaps).
 void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
-                     std::vector<Diagnostic>& diags);
+                     std::vector<Diagnostic>& diags, const std::set<std::string>& user_files = {});
+
+// Drops the parameters of hooks that graphs extending a base replaced (PassDecl::changes),
+// with a note each in g.notes; clears the changes. Passes of unknown types are left alone.
+void settle_hook_swaps(GraphFile& g, const PassRegistry& reg);
 
 // Every error at once: unknown pass type/param (did-you-mean), type/range errors, unconnected
 // required inputs, kind/format mismatches, cycles, unknown resources, two writers of one resource.

@@ -3,10 +3,13 @@
 // included). "--set pass.enabled=false" toggles a pass and "--set pass.type=TYPE" replaces its
 // type (the parameters it had stay and are validated against the new type), unless the type
 // has a parameter of that name. Overrides apply in order: a hook set first declares the
-// parameters a later --set may give.
+// parameters a later --set may give, and a set that replaces a hook drops the parameters the
+// graph set for the replaced one (graph_hook_swap.cpp). A hook may be a path the user gave
+// (user_files: the command line, Python), never one an experiment file or viewer script gives.
 #include "graph_internal.hpp"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace pathlet {
 
@@ -23,7 +26,8 @@ bool parse_bool(const std::string& s, bool& out) {
 }  // namespace
 
 void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
-                     std::vector<Diagnostic>& diags) {
+                     std::vector<Diagnostic>& diags, const std::set<std::string>& user_files) {
+    settle_hook_swaps(g, reg);
     for (const auto& set : sets) {
         auto error = [&](const std::string& ptr, const std::string& msg) {
             diags.push_back({g.path, ptr, "--set " + set + ": " + msg});
@@ -95,10 +99,30 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
             continue;
         }
         json out;
-        if (std::string err = d->coerce_text(text, out); !err.empty())
+        if (std::string err = d->coerce_text(text, out); !err.empty()) {
             error(p->pointer + "/params/" + pointer_escape(param), "parameter '" + param + "' " + err);
-        else
+            continue;
+        }
+        if (d->hook.empty()) {
             p->params[param] = out;
+            continue;
+        }
+        // A hook file the user named by its path: on the search path as that file alone.
+        if (std::filesystem::path(text).is_absolute() && user_files.count(text) &&
+            std::find(g.dirs.begin(), g.dirs.end(), text) == g.dirs.end())
+            g.dirs.push_back(text);
+        const PassDecl::ParamsChange change{"--set " + set, p->params, {param}};
+        p->params[param] = out;
+        // A hook that cannot be used is this set's error, before any work (a bench checks its
+        // graphs and sets before the first run).
+        std::string bad, bad_at;
+        pass_instance_type(g, *p, *reg_type, bad, bad_at);
+        if (!bad.empty()) {
+            error(p->pointer + "/params/" + pointer_escape(param), bad);
+            p->params = change.before;
+            continue;
+        }
+        swap_hook_params(g, *p, *reg_type, change);
     }
 }
 

@@ -422,12 +422,19 @@ namespace {
 // Merges the extends chain in, then parses the whole as one graph.
 GraphFile parse_root(json root, const std::string& path) {
     std::vector<std::string> dirs, chain;
-    root = expand_extends(std::move(root), path, dirs, chain);
+    std::vector<ExtendsChange> changes;
+    root = expand_extends(std::move(root), path, dirs, chain, &changes);
     Parser p(path);
     GraphFile g = p.parse(root);
     if (!p.diags.empty()) throw GraphError(std::move(p.diags));
     g.dirs = std::move(dirs);
     g.extends = std::move(chain);
+    for (auto& c : changes)
+        for (auto& pass : g.passes)
+            if (pass.name == c.pass) {
+                pass.changes.push_back(std::move(c.change));
+                break;
+            }
     return g;
 }
 }  // namespace

@@ -41,11 +41,17 @@ std::vector<std::string> shader_search_path(const PassTypeInfo& type, const std:
     return dirs;
 }
 
-std::string check_hook_name(const std::string& name) {
+bool is_chosen_file(const std::string& name, const std::vector<std::string>& dirs) {
+    return fs::path(name).is_absolute() && std::find(dirs.begin(), dirs.end(), name) != dirs.end();
+}
+
+std::string check_hook_name(const std::string& name, const std::vector<std::string>& graph_dirs) {
     if (name.empty()) return "";
-    if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos || name.find("..") != std::string::npos ||
-        name[0] == '.')
-        return "a hook is a file name on the shader path or next to the graph, without folders or '..'";
+    if (!is_chosen_file(name, graph_dirs) &&
+        (name.find('/') != std::string::npos || name.find('\\') != std::string::npos || name.find("..") != std::string::npos ||
+         name[0] == '.'))
+        return "a hook a graph names is a file name on the shader path or next to the graph, without folders or '..' "
+               "(a path is yours to give: --set PASS.color_hook=PATH on the command line, Graph.set in Python)";
     const std::string ext = fs::path(name).extension().string();
     if (ext != ".frag" && ext != ".geom" && ext != ".glsl") return "a hook file ends in .frag, .geom or .glsl";
     return "";
@@ -59,6 +65,11 @@ struct Source {
 };
 
 std::string find_file(const std::string& name, const std::vector<std::string>& dirs) {
+    if (is_chosen_file(name, dirs)) {  // a path the user gave (check_hook_name refused any other)
+        std::error_code ec;
+        if (fs::is_regular_file(name, ec)) return name;
+        throw HookError("hook file '" + name + "' not found");
+    }
     for (const auto& d : dirs) {
         const fs::path p = fs::path(d) / name;
         std::error_code ec;
@@ -287,7 +298,7 @@ std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, cons
         const auto it = params.find(hook.name);
         const std::string file = it != params.end() && it->is_string() ? it->get<std::string>() : hook.def.get<std::string>();
         if (file.empty()) continue;  // the kit's default hook: no parameters
-        if (std::string err = check_hook_name(file); !err.empty())
+        if (std::string err = check_hook_name(file, graph_dirs); !err.empty())
             throw HookError(hook.name + " '" + file + "': " + err);
         if (dirs.empty()) dirs = shader_search_path(type, graph_dirs);
         for (ParamDecl& d : hook_params(file, hook.hook, dirs)) {

@@ -32,12 +32,14 @@ struct HookError : std::runtime_error {
 
 // Where a pass type's shaders are found, in order: PATHLET_SHADER_PATH, the plugin's own
 // shader folder, the shared shaders; then `graph_dirs` (the graph file's folder and those of
-// the graphs it extends: hook files next to the graph).
+// the graphs it extends: hook files next to the graph; and hook files the user named by path,
+// GraphFile::dirs).
 std::vector<std::string> shader_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
 
 // A hook name as a graph may give it: a plain file name ending in .frag, .geom or .glsl, found
-// on the shader path (no folders, no '..'). Returns "" or what is wrong with it.
-std::string check_hook_name(const std::string& name);
+// on the shader path (no folders, no '..'), or an absolute path that is itself an entry of
+// `graph_dirs` (a file the user named: --set, Python). Returns "" or what is wrong with it.
+std::string check_hook_name(const std::string& name, const std::vector<std::string>& graph_dirs = {});
 
 // The parameters a hook file (and what it includes) declares with @param. `role` is "color"
 // or "width": the file must define that hook's function. Throws HookError naming file and line.

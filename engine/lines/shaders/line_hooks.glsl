@@ -1,5 +1,6 @@
 // The line kit's hook interface: what a width or colour hook sees of one point of a pathlet.
-// A hook is its own shader file that includes this and defines one function:
+// A hook is its own shader file that defines one function (the kit puts this file and the
+// version line before it; including it again is harmless):
 //   width hook (.geom, or .glsl):  float line_width_hook(LinePoint p);   // multiplier of the width, 0..4
 //   colour hook (.frag, or .glsl): vec4 line_color_hook(vec4 rgba, LinePoint p);  // colour, opacity
 // A kit pass names it in its color_hook / width_hook parameter; the kit links it into the

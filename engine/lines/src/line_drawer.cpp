@@ -63,14 +63,13 @@ Hooks hooks(const PassContext& ctx) {
 
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
                        const std::vector<std::string>& defines) {
-    // A .glsl hook is compiled as the stage its role needs (ShaderProgram's "stage:file").
-    auto staged = [](const std::string& file, const char* stage, const char* ext) {
-        return file.size() > 5 && file.compare(file.size() - 5, 5, ext) == 0 ? file : std::string(stage) + ":" + file;
-    };
+    // A hook is only its function: compiled as the stage its role needs, after the kit's
+    // definitions (LinePoint, the uniform block: ShaderProgram's "stage:prelude+file").
+    auto hook = [](const std::string& file, const char* stage) { return std::string(stage) + ":line_hooks.glsl+" + file; };
     std::vector<std::string> files{"line_kit.vert", "line_quad.geom",
-                                   hooks.width.empty() ? "line_width_default.geom" : staged(hooks.width, "geom", ".geom")};
+                                   hooks.width.empty() ? "line_width_default.geom" : hook(hooks.width, "geom")};
     files.insert(files.end(), fragment.begin(), fragment.end());
-    files.push_back(hooks.color.empty() ? "line_color_default.frag" : staged(hooks.color, "frag", ".frag"));
+    files.push_back(hooks.color.empty() ? "line_color_default.frag" : hook(hooks.color, "frag"));
     std::vector<std::string> all = defines;
     if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
     // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both

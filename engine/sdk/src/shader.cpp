@@ -16,8 +16,20 @@ namespace fs = std::filesystem;
 namespace pathlet {
 
 std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs) {
-    // A shader is a file name looked up on the shader path, never a path: a graph names shaders
-    // (fullscreen.shader), and "/etc/passwd" or "../../secret" must not reach another file.
+    // A hook file the user named by its path (--set, Python) is on the search path as that file
+    // itself: found by that path, and only then.
+    if (fs::path(name).is_absolute()) {
+        for (const auto& d : dirs) {
+            std::error_code ec;
+            if (d == name && fs::is_regular_file(d, ec)) return d;
+        }
+        throw ShaderError("shader name '" + name +
+                          "' refused: a shader is a file name (no '/', not '..') looked up on the shader path; a "
+                          "path only when you named that file for a hook (--set PASS.color_hook=PATH, Graph.set in "
+                          "Python)");
+    }
+    // Otherwise a shader is a file name looked up on the shader path, never a path: a graph names
+    // shaders (fullscreen.shader), and "/etc/passwd" or "../../secret" must not reach another file.
     if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
         throw ShaderError("shader name '" + name +
                           "' refused: a shader is a file name (no '/', not '..') looked up on the shader path");
@@ -47,10 +59,17 @@ std::string read_text(const std::string& path) {
     return s.str();
 }
 
+bool is_version_line(const std::string& line) {
+    static const std::regex version_re(R"(^\s*#\s*version\b.*$)");
+    return std::regex_match(line, version_re);
+}
+
 // Inlines #include "x" recursively. Each file gets a source-string number for #line, so the
-// compiler's messages can be mapped back to the file names in `files`.
+// compiler's messages can be mapped back to the file names in `files`. A file's own #version
+// line becomes an empty line (compose() puts one version line first), so its lines keep their
+// numbers.
 std::string expand(const std::string& path, const std::vector<std::string>& dirs, std::vector<std::string>& files,
-                   int depth, bool is_root, const std::vector<std::string>& defines) {
+                   int depth) {
     if (depth > 16) throw ShaderError(path + ": #include nested too deeply (a cycle?)");
     int id = int(files.size());
     files.push_back(path);
@@ -58,8 +77,6 @@ std::string expand(const std::string& path, const std::vector<std::string>& dirs
     std::ostringstream out;
     std::string line;
     int n = 0;
-    static const std::regex version_re(R"(^\s*#\s*version\b.*$)");
-    bool saw_version = false;
     while (std::getline(in, line)) {
         ++n;
         if (const std::string name = include_target(line); !name.empty()) {
@@ -72,18 +89,61 @@ std::string expand(const std::string& path, const std::vector<std::string>& dirs
                 throw ShaderError(path + ":" + std::to_string(n) + ": " + e.what());
             }
             out << "#line 1 " << files.size() << "\n";
-            out << expand(inc, dirs, files, depth + 1, false, defines);
+            out << expand(inc, dirs, files, depth + 1);
             out << "#line " << (n + 1) << " " << id << "\n";
-        } else if (is_root && !saw_version && std::regex_match(line, version_re)) {
-            saw_version = true;
-            out << line << "\n";
-            for (const auto& d : defines) out << "#define " << d << "\n";
-            out << "#line " << (n + 1) << " " << id << "\n";
+        } else if (depth == 0 && is_version_line(line)) {
+            out << "\n";
         } else {
             out << line << "\n";
         }
     }
     return out.str();
+}
+
+// One stage's source from its files (the last is the stage's own; those before it are included
+// first, as the line kit gives a hook its definitions): the version line first — the first
+// that one of the files has, else the engine's — then the program's defines, then each file
+// under its own source-string number.
+std::string compose(const std::vector<std::string>& paths, const std::vector<std::string>& dirs,
+                    std::vector<std::string>& files, const std::vector<std::string>& defines) {
+    std::string version = "#version 450 core";
+    for (auto it = paths.rbegin(); it != paths.rend(); ++it) {  // the stage's own file decides
+        std::istringstream in(read_text(*it));
+        std::string line;
+        bool found = false;
+        while (!found && std::getline(in, line)) found = is_version_line(line);
+        if (found) {
+            version = line;
+            break;
+        }
+    }
+    std::ostringstream out;
+    out << version << "\n";
+    for (const auto& d : defines) out << "#define " << d << "\n";
+    for (const auto& p : paths) {
+        out << "#line 1 " << files.size() << "\n";
+        out << expand(p, dirs, files, 0);
+    }
+    return out.str();
+}
+
+// "frag:line_hooks.glsl+/home/me/fade.glsl" -> stage "frag", files {"line_hooks.glsl",
+// "/home/me/fade.glsl"}. A prefix counts as a stage only when it names one, and a '+' only
+// after a plain file name with a shader extension, so a path with ':' or '+' stays whole.
+struct Entry {
+    std::string stage;               // "" = by the extension of the last file
+    std::vector<std::string> files;
+};
+Entry parse_entry(const std::string& entry) {
+    static const std::regex stage_re(R"(^(vert|geom|frag|comp|tesc|tese):)");
+    static const std::regex prelude_re(R"(^([^/+:]+\.(glsl|vert|geom|frag|comp))\+)");
+    Entry e;
+    std::string rest = entry;
+    std::smatch m;
+    if (std::regex_search(rest, m, stage_re)) e.stage = m[1].str(), rest = m.suffix().str();
+    while (std::regex_search(rest, m, prelude_re)) e.files.push_back(m[1].str()), rest = m.suffix().str();
+    e.files.push_back(rest);
+    return e;
 }
 
 // Rewrites "0:12(3): error: ..." (Mesa) and "0(12) : error ..." (NVIDIA) into "file:12: error: ...".
@@ -144,17 +204,16 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     auto cleanup = [&] {
         for (GLuint s : shaders) glDeleteShader(s);
     };
-    for (const auto& entry : names) {
-        // "frag:hook.glsl" compiles a file as the named stage whatever its extension.
-        const size_t colon = entry.find(':');
-        const std::string name = colon == std::string::npos ? entry : entry.substr(colon + 1);
-        const std::string stage = colon == std::string::npos ? "" : "stage." + entry.substr(0, colon);
-        std::string path = find_shader_file(name, dirs);
+    for (const auto& text : names) {
+        const Entry entry = parse_entry(text);
+        std::vector<std::string> paths;
+        for (const auto& f : entry.files) paths.push_back(find_shader_file(f, dirs));
+        const std::string& path = paths.back();
         std::vector<std::string> files;
-        std::string src = expand(path, dirs, files, 0, true, defines);
+        std::string src = compose(paths, dirs, files, defines);
         collect_uniforms(src, prog.declared_);
-        prog.files_ += (prog.files_.empty() ? "" : ", ") + name;
-        GLuint sh = glCreateShader(stage_of(stage.empty() ? path : stage));
+        prog.files_ += (prog.files_.empty() ? "" : ", ") + fs::path(path).filename().string();
+        GLuint sh = glCreateShader(stage_of(entry.stage.empty() ? path : "stage." + entry.stage));
         shaders.push_back(sh);
         const char* p = src.c_str();
         glShaderSource(sh, 1, &p, nullptr);

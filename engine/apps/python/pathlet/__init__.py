@@ -161,27 +161,42 @@ class Graph:
     """A graph file (or a shipped graph's name) with overrides, checked as ``--set`` checks
     them: set("window", 0.6), set(samples=32), set("lineao.strength=2"), g["radius"] = 3.
     A wrong name or value raises GraphError with the JSON pointer and a did-you-mean, and
-    leaves the graph as it was."""
+    leaves the graph as it was. A hook is a file on the shader path or next to the graph, or
+    a path of yours (relative to the current folder): set("fill_list.color_hook=my_fade.glsl").
+    What resolving it did that you may not expect (a replaced hook's parameters dropped) is
+    a warning and in notes."""
 
     def __init__(self, graph="variant1_lineao", sets=(), *, label=None):
         self.path = _core().resolve_graph(os.fspath(graph))
         self._sets = []
         self._info = _core().describe_graph(self.path, [])
         self.label = label
+        self._warn_notes(())
         for s in sets:
             self.set(s)
 
     name = property(lambda self: self._info["name"])
     description = property(lambda self: self._info["description"])
-    sets = property(lambda self: tuple(self._sets), doc="the overrides, as --set NAME=VALUE texts")
+    sets = property(lambda self: tuple(self._sets), doc="the overrides, as --set NAME=VALUE texts "
+                                                        "(hook paths made absolute)")
+    notes = property(lambda self: list(self._info["notes"]), doc="what resolving the graph did that you may "
+                                                                 "not expect (a replaced hook's parameters dropped)")
+
+    def _warn_notes(self, before):
+        for n in self._info["notes"]:
+            if n not in before:
+                warnings.warn(f"pathlet: {n}", stacklevel=3)
 
     def set(self, *assignments, **values):
         new = list(assignments) + [f"{k}={_value_text(v)}" for k, v in values.items()]
         for a in new:
             if not isinstance(a, str):
                 raise TypeError(f"set: expected 'NAME=VALUE' or NAME=VALUE keywords, got {a!r}")
+        new = _core().user_sets(new)  # a hook path of yours: absolute, as the command line makes it
+        before = self._info["notes"]
         self._info = _core().describe_graph(self.path, self._sets + new)
         self._sets += new
+        self._warn_notes(before)
         return self
 
     def __setitem__(self, name, value):
@@ -271,7 +286,7 @@ def render(graph, scene, time=None, size=(1280, 720), *, outputs=None, camera=No
            warmup=2, timing="auto"):
     """Renders like ``pathlet render`` (same defaults, warm-up included) but returns the images
     instead of writing them. time: T, (START, END[, STEP]) or "A:B:STEP"; None: the data's
-    whole span in 0.25 s steps. outputs: resource names or pass.pin (e.g. ["final", "ao"]);
+    whole span in 0.25 s steps (said on stderr). outputs: resource names or pass.pin (e.g. ["final", "ao"]);
     default the graph's outputs. camera: a camera path file, or {"eye", "target", "up", "fov"}."""
     g = _graph(graph)
     a = _core().RenderArgs()
@@ -356,11 +371,13 @@ class Results:
         return f"<pathlet.Results {r.get('experiment')}: {len(r['runs'])} of {r.get('planned_runs')} runs>"
 
 
-def bench(graphs, scene=None, *, sizes=("1280x720",), time=9, frames=10, warmup=3, sets=(), sweep=None,
+def bench(graphs, scene=None, *, sizes=("1280x720",), time=None, frames=10, warmup=3, sets=(), sweep=None,
           timing="auto", out=None):
     """Times graphs as ``pathlet bench GRAPHS`` does (same runs, same numbers): graphs are names,
     files or Graph objects (with their overrides); sweep=(NAME, [values]) runs each graph at
-    every value. scene: default the study phantom. out: also write the results folder."""
+    every value. scene: default the study phantom. time: None measures the middle of the
+    data's time span (said on stderr; the report's data entries hold it). out: also write the
+    results folder."""
     if isinstance(graphs, (str, Graph)):
         graphs = [graphs]
     entries, labels = [], set()
@@ -372,8 +389,10 @@ def bench(graphs, scene=None, *, sizes=("1280x720",), time=9, frames=10, warmup=
         labels.add(label)
         entries.append({"graph": g.path, "label": label, "set": list(g.sets)})
     exp = {"name": "bench", "graphs": entries, "sizes": [_size_text(s) for s in sizes],
-           "time": _time_text(time), "frames": int(frames), "warmup": int(warmup),
-           "set": [s if isinstance(s, str) else f"{s[0]}={_value_text(s[1])}" for s in sets]}
+           "frames": int(frames), "warmup": int(warmup),
+           "set": _core().user_sets([s if isinstance(s, str) else f"{s[0]}={_value_text(s[1])}" for s in sets])}
+    if time is not None:
+        exp["time"] = _time_text(time)
     if sweep is not None:
         name, values = sweep
         exp["sweep"] = {"param": name, "values": [_value_text(v) for v in values]}
@@ -395,7 +414,7 @@ def run_experiment(path, scene=None, *, out=None, sizes=None, time=None, frames=
     a.time = _time_text(time)
     a.frames = -1 if frames is None else int(frames)
     a.warmup = -1 if warmup is None else int(warmup)
-    a.sets = list(sets)
+    a.sets = _core().user_sets(list(sets))
     a.shard = shard or ""
     a.timing = timing
     a.out = os.fspath(out) if out else ""
@@ -405,9 +424,10 @@ def run_experiment(path, scene=None, *, out=None, sizes=None, time=None, frames=
 
 # ---- quality ----------------------------------------------------------------------------------
 
-def quality(graph, scene, time="9:9.4:0.04", size=(320, 180), *, rays=256, flicker_rays=256,
+def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=256,
             include_own_line=False, max_distance=10.0, depth_tolerance=0.002):
-    """``pathlet quality`` as numbers: flicker (mean |dAO| where the same line stays),
+    """``pathlet quality`` as numbers (time None: 11 frames 0.04 s apart from the middle of the
+    data's span, said on stderr; the study phantom's 9:9.4:0.04): flicker (mean |dAO| where the same line stays),
     geometry_change, with flicker_rays > 0 reference_change and flicker_excess (how much the
     ray-traced AO changes at those pixels, and the AO's change beyond it), mae and correlation
     against a ray-traced AO of the last frame, and the images error (|error| per pixel),

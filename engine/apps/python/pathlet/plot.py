@@ -20,14 +20,12 @@ import math
 import os
 import sys
 
-# Tableau 20. The first colours go to the shipped graphs' passes, so a pass keeps its colour
-# whatever else a figure shows; engine/apps/bench/svg_plot.cpp has the same table.
-PALETTE = ["#4e79a7", "#a0cbe8", "#f28e2b", "#ffbe7d", "#59a14f", "#8cd17d", "#b6992d", "#f1ce63", "#499894",
-           "#86bcb6", "#e15759", "#ff9d9a", "#79706e", "#bab0ac", "#d37295", "#fabfd2", "#b07aa1", "#d4a6c8",
-           "#9d7660", "#d7b5a6"]
-KNOWN = {"gbuffer": 0, "gauss_pyramid": 1, "lineao": 2, "bilateral": 3, "isl": 4, "temporal_ao": 5,
-         "edge_aa": 6, "overlay": 7, "fade_core": 8, "clear_list": 9, "geometric_fade": 10, "fill_list": 11,
-         "wall": 12, "resolve_list": 16}
+# The pass colours: one table and rule for these figures and the SVG `pathlet bench` writes
+# (engine/apps/bench/svg_plot.cpp embeds the same file).
+with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "pass_colors.json")) as _f:
+    _COLORS = json.load(_f)
+PALETTE = _COLORS["palette"]
+KNOWN = _COLORS["places"]
 FRAME_COLOUR = "#222222"
 
 
@@ -39,8 +37,9 @@ def _fnv1a32(text):
 
 
 def pass_colors(names):
-    """Name -> colour: fixed for shipped passes, else hashed into the colours no known pass of
-    these names uses (the next free one on a collision, in the order given)."""
+    """Name -> colour by pass_colors.json's rule: fixed for shipped passes, else hashed into the
+    colours no known pass of these names uses (the next free one on a collision, in the order
+    given)."""
     taken = {KNOWN[n] for n in names if n in KNOWN}
     out = {}
     for n in names:

@@ -16,6 +16,10 @@
 //
 //   uniform float u_start;  // @param 0.3 [0, 1] "age where the fade begins"
 //
+// A hook file is only its function (and its @param uniforms): the kit compiles it after its
+// definitions (line_hooks.glsl) under the engine's #version; a file's own #version and
+// #include "line_hooks.glsl" still work. Compile errors name the hook's file and line.
+//
 // LinePoint (shaders/line_hooks.glsl) carries the point's time, its age in the window (0 at
 // the head, 1 at the tail), the arc length from the head and from the tail, speed, line id.
 // The kit derives the quad, tube normal and tube depth from the hooked width. Its own fades are
@@ -35,7 +39,8 @@
 
 namespace pathlet::lines {
 
-// GLSL hook files, found on the shader path and next to the graph. Empty: the kit's default
+// GLSL hook files, found on the shader path and next to the graph (or a path the user gave
+// on the command line or in Python). Empty: the kit's default
 // (full width; the colour map as it is, opaque).
 struct Hooks {
     std::string width = {};  // .geom (or .glsl) defining float line_width_hook(LinePoint p)

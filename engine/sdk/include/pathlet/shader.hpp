@@ -1,5 +1,6 @@
 // GLSL programs loaded from files on the shader search path, with `#include "file"`
-// resolved there too. Each source file gets a number in #line directives, so compile
+// resolved there too. A file needs no #version line (the engine's, 450 core, comes first; a
+// file's own is used instead). Each source file gets a number in #line directives, so compile
 // errors are reported as "<file>:<line>: <message>" (ShaderError).
 #pragma once
 
@@ -29,8 +30,10 @@ public:
     ShaderProgram& operator=(ShaderProgram&& o) noexcept;
     ~ShaderProgram();
 
-    // Stage by extension: .vert .geom .frag .comp, or named: "frag:hook.glsl". `dirs` are
-    // searched in order.
+    // Stage by extension: .vert .geom .frag .comp, or named: "frag:hook.glsl". Files joined by
+    // '+' are one stage, included in that order: "frag:line_hooks.glsl+hook.glsl" is hook.glsl
+    // after the kit's definitions (a '+' counts after a plain file name with a shader
+    // extension, a stage prefix only when it names a stage). `dirs` are searched in order.
     static ShaderProgram from_files(const std::vector<std::string>& files, const std::vector<std::string>& dirs,
                                     const std::vector<std::string>& defines = {});
 
@@ -101,7 +104,8 @@ inline std::vector<std::string> whole_exponent(const std::string& name, float va
 }
 
 // Finds a file on the search path; throws ShaderError listing the directories searched. `name`
-// is a file name: one with a '/' (absolute or relative) or ".." is refused.
+// is a file name: one with a '/' or ".." is refused; an absolute path is found only when it is
+// itself an entry of `dirs` (a hook file the user named by its path).
 std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs);
 // The file an `#include "x"` or `#include <x>` line names, or "" for any other line: what the
 // program loader inlines, and what the graph's hook scan follows for @param lines.
