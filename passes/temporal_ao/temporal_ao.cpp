@@ -14,7 +14,8 @@ namespace {
 class TemporalAo : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"fullscreen.vert", "temporal_ao.frag"});
+        compute_ = ctx.use_compute();
+        prog_ = &ctx.fullscreen_program("temporal_ao.frag");
         have_prev_ = false;  // a resize or parameter change starts over
     }
 
@@ -29,7 +30,10 @@ public:
         prog_->set("u_near_far", glm::vec2(cam.near_plane, cam.far_plane));
         prog_->set("u_prev_near_far", glm::vec2(prev_.near_plane, prev_.far_plane));
         prog_->set("u_history_valid", (have_prev_ && p.b("enabled")) ? 1 : 0);
-        if (ctx.connected("depth")) {
+        ctx.stat(pathlet::kComputeStat, compute_ ? 1.0 : 0.0);
+        if (compute_) {
+            ctx.dispatch_fullscreen(*prog_, ctx.connected("depth") ? "depth" : "");
+        } else if (ctx.connected("depth")) {
             // Only covered pixels: background AO is never read (bilateral skips it, and the
             // history is read only where the line id matches).
             ctx.bind_framebuffer({"ao_acc"}, "depth");
@@ -46,6 +50,7 @@ private:
     pathlet::ShaderProgram* prog_ = nullptr;
     pathlet::Camera prev_;
     bool have_prev_ = false;
+    bool compute_ = false;
 };
 
 pathlet::PassTypeInfo temporal_ao_type() {
@@ -64,6 +69,7 @@ pathlet::PassTypeInfo temporal_ao_type() {
         .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped",
                        {.optional = true})
         .output_texture("ao_acc", "r16f", "accumulated AO; make it a history resource")
+        .compute_version()
         .make<TemporalAo>();
 }
 

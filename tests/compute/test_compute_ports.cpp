@@ -54,12 +54,15 @@ struct Capture {
     std::map<std::string, double> compute;  // pass -> its kComputeStat
 };
 
+// The last of `frames` frames (0.04 s apart from t = 2 s, the middle of the small phantom's
+// 0..4 s): more than one for passes with history.
 Capture render_capture(const std::string& graph, const std::vector<std::string>& resources,
-                       std::vector<std::string> sets, glm::ivec2 size = kOdd, bool close = true) {
+                       std::vector<std::string> sets, glm::ivec2 size = kOdd, bool close = true, int frames = 1) {
     RenderOptions o;
     o.graph_path = std::string(PATHLET_SOURCE_DIR) + "/graphs/" + graph + ".json";
     o.size = size;
-    o.time.start = o.time.end = 2.0;  // the middle of the small phantom's 0..4 s
+    o.time.start = 2.0;
+    o.time.end = 2.0 + 0.04 * (frames - 1) + 0.01;
     if (close) o.camera_path = close_camera();
     o.sets = std::move(sets);
     o.warmup = 0;
@@ -133,20 +136,22 @@ void dump(const std::string& tag, const Image& fragment, const Image& compute) {
 // Renders the graph with `pass.impl=fragment` and `pass.impl=compute` (plus `sets`) and
 // compares every resource: identical is expected (same shader, same arithmetic); the bound
 // is 0.5/255 RMS with no pixel off by more than 1/255.
-void expect_same(const std::string& graph, const std::string& pass, const std::vector<std::string>& resources,
-                 const std::vector<std::string>& sets = {}) {
+// Returns the fragment version's capture, for properties of the frame.
+Capture expect_same(const std::string& graph, const std::string& pass, const std::vector<std::string>& resources,
+                    const std::vector<std::string>& sets = {}, int frames = 1) {
     std::string tag = pass;
     for (const auto& s : sets) tag += "_" + s;
     SCOPED_TRACE(graph + ", " + tag);
     auto with = [&](const char* impl) {
         std::vector<std::string> s = sets;
         s.push_back(pass + ".impl=" + impl);
-        return render_capture(graph, resources, s);
+        return render_capture(graph, resources, s, kOdd, true, frames);
     };
     const Capture frag = with("fragment"), comp = with("compute");
     // Each run reports what ran: otherwise a compute run that silently drew with the fragment
     // version would compare equal.
-    ASSERT_EQ(frag.compute.count(pass), 1u) << pass << " reports no '" << kComputeStat << "' stat";
+    EXPECT_EQ(frag.compute.count(pass), 1u) << pass << " reports no '" << kComputeStat << "' stat";
+    if (!frag.compute.count(pass) || !comp.compute.count(pass)) return frag;
     EXPECT_EQ(frag.compute.at(pass), 0.0);
     EXPECT_EQ(comp.compute.at(pass), 1.0);
     // The frame has lines on the image border (where neighbours are clamped): AO below 1 there.
@@ -175,6 +180,7 @@ void expect_same(const std::string& graph, const std::string& pass, const std::v
             if (d.rms > 0.5 / 255 || d.max > 1.0f / 255 + 1e-6f) dump(tag + "_" + name, a, b);
         }
     }
+    return frag;
 }
 
 // What variant1_lineao's fullscreen passes write, the pyramid's every level included.
@@ -229,7 +235,7 @@ TEST(compute_ports, OutputsHaveImageFormats) {
                 EXPECT_TRUE(image_formats.count(p.format)) << t->type << "." << p.name << " is " << p.format
                                                            << ", which image load/store cannot write";
     }
-    EXPECT_GE(ports, 4) << "gauss_pyramid, lineao, bilateral and edge_aa have compute versions";
+    EXPECT_GE(ports, 6) << "gauss_pyramid, lineao, bilateral, edge_aa, volume_ao and temporal_ao have compute versions";
 }
 
 // ---- each port against its fragment version ------------------------------------------------
@@ -256,6 +262,16 @@ TEST(compute_ports, EdgeAA) {
 
 TEST(compute_ports, BilateralSmoothedAoOutput) {  // the optional ao_smooth, for OIT's per-fragment AO
     expect_same("variant2_oit_ao", "bilateral", {"ao_smooth", "lit", "final"});
+}
+
+TEST(compute_ports, VolumeAO) {  // with the hybrid's screen-space term too
+    expect_same("variant1_vao", "volume_ao", {"ao", "lit", "final"});
+    expect_same("variant1_hybrid", "volume_ao", {"ao", "final"});
+}
+
+TEST(compute_ports, TemporalAO) {  // three frames: the third blends the reprojected history
+    const Capture c = expect_same("variant1_stable", "temporal_ao", {"ao", "ao_acc", "lit", "final"}, {}, 3);
+    EXPECT_GT(compare(c.images.at("ao"), c.images.at("ao_acc")).pixels, 500u) << "no history was blended in";
 }
 
 // ---- through the command line ----------------------------------------------------------------
