@@ -14,7 +14,7 @@ namespace lines = pathlet::lines;
 class VolumeAoPass : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        std::vector<std::string> defines = lines::VolumeAo::defines(ctx.params());
+        std::vector<std::string> defines = lines::VolumeAo::defines(ctx);
         if (ctx.connected("screen_ao")) defines.push_back("SCREEN_AO");
         compute_ = ctx.use_compute();
         prog_ = &ctx.fullscreen_program("volume_ao.frag", defines);

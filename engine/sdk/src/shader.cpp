@@ -1,6 +1,7 @@
 #include <pathlet/shader.hpp>
+#include <pathlet/gl_limits.hpp>
 
-#include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -183,6 +184,8 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
         throw ShaderError("GLSL link error in program (" + list + "):\n" + log.c_str());
     }
+    // What a minimal GL 4.5 driver would refuse fails here on any driver (pathlet/gl_limits.hpp).
+    check_program_limits(prog.id_, prog.files_);
     prog.reflect();
     bool compute = false;
     for (const auto& entry : names) {
@@ -234,12 +237,31 @@ void ShaderProgram::reflect() {
         Uniform u{name, GLenum(v[1]), v[2], v[3]};
         u.image = is_image(u.type);
         u.opaque = u.image || is_sampler(u.type);
-        if (u.opaque) {
-            u.unit = u.image ? images++ : samplers++;
-            glProgramUniform1i(id_, u.location, u.unit);
-        }
         uniforms_.push_back(u);
+        if (u.opaque) {
+            int& next = u.image ? images : samplers;
+            set_unit(u.name, next);
+            next += std::max(1, u.size);
+        }
     }
+    blocks_.clear();
+    glGetProgramInterfaceiv(id_, GL_UNIFORM_BLOCK, GL_ACTIVE_RESOURCES, &count);
+    for (GLint i = 0; i < count; ++i) {
+        GLint len = 0;
+        const GLenum prop = GL_NAME_LENGTH;
+        glGetProgramResourceiv(id_, GL_UNIFORM_BLOCK, GLuint(i), 1, &prop, 1, nullptr, &len);
+        std::string name(size_t(std::max(len, 1)), '\0');
+        glGetProgramResourceName(id_, GL_UNIFORM_BLOCK, GLuint(i), len, nullptr, name.data());
+        name.resize(std::strlen(name.c_str()));
+        glUniformBlockBinding(id_, GLuint(i), GLuint(i));
+        blocks_.push_back({name, int(i)});
+    }
+}
+
+int ShaderProgram::block_binding(const std::string& name) const {
+    for (const auto& b : blocks_)
+        if (b.name == name) return b.binding;
+    return -1;
 }
 
 const ShaderProgram::Uniform* ShaderProgram::uniform(const std::string& name) const {
@@ -252,7 +274,9 @@ void ShaderProgram::set_unit(const std::string& name, int unit) {
     for (auto& u : uniforms_)
         if (u.name == name && u.opaque) {
             u.unit = unit;
-            glProgramUniform1i(id_, u.location, unit);
+            std::vector<GLint> units(size_t(std::max(1, u.size)));
+            for (size_t k = 0; k < units.size(); ++k) units[k] = unit + GLint(k);
+            glProgramUniform1iv(id_, u.location, GLsizei(units.size()), units.data());
             return;
         }
 }
@@ -278,7 +302,7 @@ void ShaderProgram::bind_image(const std::string& name, GLuint texture, GLenum f
 }
 
 ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept
-    : id_(o.id_), uniforms_(std::move(o.uniforms_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)),
+    : id_(o.id_), uniforms_(std::move(o.uniforms_)), blocks_(std::move(o.blocks_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)),
       local_size_(o.local_size_) {
     o.id_ = 0;
 }
@@ -287,6 +311,7 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
         if (id_) glDeleteProgram(id_);
         id_ = o.id_;
         uniforms_ = std::move(o.uniforms_);
+        blocks_ = std::move(o.blocks_);
         locs_ = std::move(o.locs_);
         declared_ = std::move(o.declared_);
         files_ = std::move(o.files_);
