@@ -274,6 +274,24 @@ TEST(compute_ports, TemporalAO) {  // three frames: the third blends the reproje
     EXPECT_GT(compare(c.images.at("ao"), c.images.at("ao_acc")).pixels, 500u) << "no history was blended in";
 }
 
+// Every compute version within the GL 4.5 minimum limits (8 image units, 8 image uniforms and
+// 16 samplers per stage, 8 combined outputs): the engine checks every program and numbers the
+// units under PATHLET_GL_LIMITS=minimum, as a minimal driver would.
+TEST(compute_ports, WithinTheGlMinimum) {
+    ::setenv("PATHLET_GL_LIMITS", "minimum", 1);
+    std::vector<std::string> all;
+    for (const char* p : {"gauss_pyramid", "lineao", "bilateral", "edge_aa"}) all.push_back(std::string(p) + ".impl=compute");
+    std::vector<std::string> half = all, vao = {"volume_ao.impl=compute", "bilateral.impl=compute", "edge_aa.impl=compute"};
+    half.push_back("lineao.resolution=half");
+    for (const auto& [graph, sets] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+             {"variant1_lineao", all}, {"variant1_lineao", half}, {"variant2_oit_ao", {"bilateral.impl=compute"}},
+             {"variant1_hybrid", vao}, {"variant1_stable", {"temporal_ao.impl=compute"}}}) {
+        SCOPED_TRACE(graph);
+        EXPECT_NO_THROW(render_capture(graph, {}, sets, {96, 64}, false));
+    }
+    ::unsetenv("PATHLET_GL_LIMITS");
+}
+
 // ---- through the command line ----------------------------------------------------------------
 
 // A shipped graph with every port switched to compute by --set draws the picture the defaults
