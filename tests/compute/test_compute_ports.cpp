@@ -138,14 +138,14 @@ void dump(const std::string& tag, const Image& fragment, const Image& compute) {
 // is 0.5/255 RMS with no pixel off by more than 1/255.
 // Returns the fragment version's capture, for properties of the frame.
 Capture expect_same(const std::string& graph, const std::string& pass, const std::vector<std::string>& resources,
-                    const std::vector<std::string>& sets = {}, int frames = 1) {
+                    const std::vector<std::string>& sets = {}, int frames = 1, bool close = true) {
     std::string tag = pass;
     for (const auto& s : sets) tag += "_" + s;
     SCOPED_TRACE(graph + ", " + tag);
     auto with = [&](const char* impl) {
         std::vector<std::string> s = sets;
         s.push_back(pass + ".impl=" + impl);
-        return render_capture(graph, resources, s, kOdd, true, frames);
+        return render_capture(graph, resources, s, kOdd, close, frames);
     };
     const Capture frag = with("fragment"), comp = with("compute");
     // Each run reports what ran: otherwise a compute run that silently drew with the fragment
@@ -155,7 +155,7 @@ Capture expect_same(const std::string& graph, const std::string& pass, const std
     EXPECT_EQ(frag.compute.at(pass), 0.0);
     EXPECT_EQ(comp.compute.at(pass), 1.0);
     // The frame has lines on the image border (where neighbours are clamped): AO below 1 there.
-    if (frag.images.count("ao")) {
+    if (close && frag.images.count("ao")) {
         const Image& ao = frag.images.at("ao");
         int border_lines = 0;
         for (int y = 0; y < ao.height; ++y)
@@ -269,9 +269,17 @@ TEST(compute_ports, VolumeAO) {  // with the hybrid's screen-space term too
     expect_same("variant1_hybrid", "volume_ao", {"ao", "final"});
 }
 
-TEST(compute_ports, TemporalAO) {  // three frames: the third blends the reprojected history
-    const Capture c = expect_same("variant1_stable", "temporal_ao", {"ao", "ao_acc", "lit", "final"}, {}, 3);
-    EXPECT_GT(compare(c.images.at("ao"), c.images.at("ao_acc")).pixels, 500u) << "no history was blended in";
+TEST(compute_ports, TemporalAO) {
+    // Three frames at the default framing: the third blends the reprojected history. (Seen from
+    // the close camera temporal_ao finds no history: most pixels reproject off screen.)
+    const Capture c = expect_same("variant1_stable", "temporal_ao", {"ao", "ao_acc", "lit", "final"}, {}, 3, false);
+    // On lines (AO below 1), the accumulated term is not this frame's: history was blended in.
+    const Image &ao = c.images.at("ao"), &acc = c.images.at("ao_acc");
+    int on_lines = 0, blended = 0;
+    for (int y = 0; y < ao.height; ++y)
+        for (int x = 0; x < ao.width; ++x)
+            if (ao.at(x, y, 0) < 1.0f) ++on_lines, blended += acc.at(x, y, 0) != ao.at(x, y, 0);
+    EXPECT_GT(blended, on_lines / 4) << "little history was blended in (" << blended << " of " << on_lines << " pixels)";
 }
 
 // Every compute version within the GL 4.5 minimum limits (8 image units, 8 image uniforms and
