@@ -31,16 +31,13 @@ for ((r = 0; r < rounds; ++r)); do
     echo "$first $second" > "$work/round$r.order"
 done
 
-python3 - "$work" "$rounds" "${passes[@]}" <<'EOF'
-import csv, sys, re
-work, rounds, ports = sys.argv[1], int(sys.argv[2]), set(sys.argv[3:])
+renderer=$("$pathlet" info --gl 2>/dev/null | sed -n 's/^GL_RENDERER //p')
+python3 - "$work" "$rounds" "$renderer" "${passes[@]}" <<'EOF'
+import csv, sys
+work, rounds, renderer, ports = sys.argv[1], int(sys.argv[2]), sys.argv[3], set(sys.argv[4:])
 times = {}  # (impl, pass) -> [median per round]
-renderer = ""
 for r in range(rounds):
     order = open(f"{work}/round{r}.order").read().split()
-    text = open(f"{work}/round{r}.txt").read()
-    m = re.search(r"GL renderer: ([^|\n]*)", text)
-    renderer = m.group(1).strip() if m else renderer
     labels = []
     for row in csv.DictReader(open(f"{work}/round{r}.csv")):
         if row["label"] not in labels:
@@ -48,15 +45,19 @@ for r in range(rounds):
         impl = order[labels.index(row["label"])]
         times.setdefault((impl, row["pass"]), []).append(float(row["median_ms"]))
 print(f"renderer: {renderer}; {rounds} rounds, medians per round in ms")
-print(f"{'pass':<16}{'fragment':>18}{'compute':>18}{'compute/fragment':>22}")
+print(f"{'pass':<16}{'fragment':>18}{'compute':>18}{'compute/fragment':>18}{'median':>8}")
 names = [p for (impl, p) in times if impl == "fragment"]
 for p in names:
     f, c = times[("fragment", p)], times.get(("compute", p), [])
     if not c:
         continue
     ratios = [b / a for a, b in zip(f, c) if a > 0]
+    if not ratios:
+        continue
     mark = " *" if p in ports else ""
+    ratios.sort()
+    median = ratios[len(ratios) // 2] if len(ratios) % 2 else sum(ratios[len(ratios) // 2 - 1:][:2]) / 2
     print(f"{p + mark:<16}{min(f):>8.2f}..{max(f):<8.2f}{min(c):>8.2f}..{max(c):<8.2f}"
-          f"{min(ratios) if ratios else 0:>10.2f}..{max(ratios) if ratios else 0:<10.2f}")
+          f"{ratios[0]:>8.2f}..{ratios[-1]:<8.2f}{median:>8.2f}")
 print("* the passes switched between fragment and compute")
 EOF
