@@ -11,6 +11,8 @@
 #include "image_probes.hpp"
 #include "phantom/phantom.hpp"
 
+#include <pathlet/shader.hpp>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -187,6 +189,138 @@ Capture expect_same(const std::string& graph, const std::string& pass, const std
 const std::vector<std::string> kVariant1 = {"pyramid", "ao", "lit", "composed", "smooth", "final"};
 
 }  // namespace
+
+// ---- the SDK's helpers on a probe pass of the test's own ------------------------------------
+
+namespace {
+
+constexpr glm::ivec4 kProbeRect{10, 5, 50, 40};  // x0, y0, x1, y1 (GL's bottom-left origin, end exclusive)
+enum class ProbeMode { rect, whole, dispatch_fragment };
+
+// Writes probe.frag over kProbeRect (or the whole output), as the SDK's helpers do it;
+// dispatch_fragment hands dispatch_fullscreen a fragment program (an error).
+class ComputeProbe : public Pass {
+public:
+    void setup(PassContext& ctx) override {
+        mode_ = ctx.params().e<ProbeMode>("mode");
+        prog_ = mode_ == ProbeMode::dispatch_fragment ? &ctx.program({"fullscreen.vert", "probe.frag"})
+                                                      : &ctx.fullscreen_program("probe.frag");
+    }
+    void execute(PassContext& ctx) override {
+        const Texture out = ctx.texture("out");
+        const float zero[4] = {0, 0, 0, 0};
+        glClearTexImage(out.id, 0, GL_RGBA, GL_FLOAT, zero);
+        const glm::ivec4 rect = mode_ == ProbeMode::whole ? glm::ivec4(0, 0, out.width, out.height) : kProbeRect;
+        ctx.stat(kComputeStat, ctx.use_compute() ? 1.0 : 0.0);
+        if (ctx.use_compute() || mode_ == ProbeMode::dispatch_fragment) {
+            if (mode_ == ProbeMode::whole) ctx.dispatch_fullscreen(*prog_);
+            else ctx.dispatch_fullscreen(*prog_, rect);
+            return;
+        }
+        ctx.bind_framebuffer({"out"});
+        prog_->use();
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(rect.x, rect.y, rect.z - rect.x, rect.w - rect.y);
+        ctx.draw_fullscreen();
+    }
+
+private:
+    ShaderProgram* prog_ = nullptr;
+    ProbeMode mode_ = ProbeMode::rect;
+};
+
+// The same without compute_version(): asking for its compute version is an error.
+class UndeclaredProbe : public Pass {
+public:
+    void setup(PassContext& ctx) override { ctx.use_compute(); }
+    void execute(PassContext&) override {}
+};
+
+Runtime& probe_runtime() {
+    static Runtime& rt = [] () -> Runtime& {
+        Runtime& r = test_runtime();
+        r.registry.add(PassTypeBuilder("compute_probe", "the SDK's compute helpers under test")
+                           .param_enum("mode", "rect", {"rect", "whole", "dispatch_fragment"}, "what to run")
+                           .param_color("color", glm::vec3(0.2f, 0.6f, 0.0f), "colour written (red, green)")
+                           .output_texture("out", "rgba8", "the probe's pixels")
+                           .compute_version()
+                           .make<ComputeProbe>());
+        r.registry.add(PassTypeBuilder("compute_probe_undeclared", "use_compute() without compute_version()")
+                           .output_texture("out", "rgba8", "nothing")
+                           .make<UndeclaredProbe>());
+        return r;
+    }();
+    return rt;
+}
+
+// The probe graph rendered at an odd size; `out` as GL stores it (rows bottom-up flipped to
+// top-down by read_resource: row y of the image is GL row height-1-y).
+Image render_probe(const std::vector<std::string>& sets, const std::string& type = "compute_probe") {
+    const std::string dir = test_scratch_dir("compute_probe");
+    std::ifstream in(std::string(PATHLET_TEST_SOURCE_DIR) + "/probe/probe.json");
+    std::string graph((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string key = "\"type\": \"compute_probe\"";
+    graph.replace(graph.find(key), key.size(), "\"type\": \"" + type + "\"");
+    std::ofstream(dir + "/probe.json") << graph;
+    std::filesystem::copy_file(std::string(PATHLET_TEST_SOURCE_DIR) + "/probe/probe.frag", dir + "/probe.frag",
+                               std::filesystem::copy_options::overwrite_existing);
+    RenderOptions o;
+    o.graph_path = dir + "/probe.json";
+    o.size = {61, 47};
+    o.sets = sets;
+    o.warmup = 0;
+    o.write_images = false;
+    o.quiet = true;
+    o.keep = {"out"};
+    Image img;
+    render(probe_runtime(), phantom_small(), o, [&](const Executor& ex, size_t) { img = read_resource(ex.texture("out")); });
+    return img;
+}
+
+// Where the probe wrote: every pixel of `rect` holds (0.2, 0.6, x/255, y/255) in GL coordinates,
+// every other pixel 0.
+void expect_probe(const Image& img, glm::ivec4 rect) {
+    int wrong = 0;
+    std::string first;
+    for (int row = 0; row < img.height; ++row)
+        for (int x = 0; x < img.width; ++x) {
+            const int y = img.height - 1 - row;
+            const bool inside = x >= rect.x && x < rect.z && y >= rect.y && y < rect.w;
+            const glm::vec4 want = inside ? glm::vec4(0.2f, 0.6f, float(x) / 255.0f, float(y) / 255.0f) : glm::vec4(0.0f);
+            for (int c = 0; c < 4; ++c)
+                if (std::fabs(img.at(x, row, c) - want[c]) > 0.6f / 255.0f) {
+                    if (!wrong++) first = std::to_string(x) + "," + std::to_string(y);
+                    break;
+                }
+        }
+    EXPECT_EQ(wrong, 0) << "pixels not as expected, first at GL " << first;
+}
+
+}  // namespace
+
+TEST(dispatch_fullscreen, CoversExactlyTheRectangleLikeTheScissoredDraw) {
+    for (const char* impl : {"fragment", "compute"}) {
+        SCOPED_TRACE(impl);
+        expect_probe(render_probe({std::string("probe.impl=") + impl}), kProbeRect);
+        expect_probe(render_probe({std::string("probe.impl=") + impl, "probe.mode=whole"}), {0, 0, 61, 47});
+    }
+}
+
+TEST(dispatch_fullscreen, ErrorsNameThePassAndWhatIsMissing) {
+    try {
+        render_probe({"probe.mode=dispatch_fragment"});
+        ADD_FAILURE() << "a fragment program was dispatched";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("'probe'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("needs a compute program"), std::string::npos) << e.what();
+    }
+    try {
+        render_probe({}, "compute_probe_undeclared");
+        ADD_FAILURE() << "use_compute() on a type without compute_version() passed";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("compute_version()"), std::string::npos) << e.what();
+    }
+}
 
 // ---- auto's rule ------------------------------------------------------------------------------
 
