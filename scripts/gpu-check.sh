@@ -170,7 +170,7 @@ for spec in "variant1_lineao:gauss_pyramid lineao bilateral edge_aa" "variant1_v
     --phantom "$PHANTOM" --time "$WINDOW_TIME" --frames "$FRAMES" >"$R/compute_$g.txt" 2>&1 ||
     { FAILED=1; tail -5 "$R/compute_$g.txt" >&2; }
   say "compute/fragment, $g:"
-  grep ' \*' "$R/compute_$g.txt" | tee -a "$R/summary.txt"
+  grep -E '^pass | \* ' "$R/compute_$g.txt" | tee -a "$R/summary.txt"
 done
 ports=(gauss_pyramid lineao bilateral edge_aa)
 for impl in fragment compute; do
