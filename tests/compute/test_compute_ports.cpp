@@ -1,9 +1,11 @@
 // Fullscreen passes with a compute version (PassTypeBuilder::compute_version(), parameter
 // `impl`): the compute port draws what the fragment version draws, on real frames of the small
 // phantom (a close camera, so lines cross the image border, at 333x217: no multiple of the
-// 8x8 work group), every parameter path of each port; `auto` picks the fragment version on
-// this llvmpipe context and follows auto_impl's rule for other renderer strings; every output a
-// compute version writes has a format image load/store accepts.
+// 8x8 work group), every parameter path of each port, every resource of the frame compared
+// (allowed: 0.5/255 RMS and no pixel off by more than 1/255; measured: identical); `auto` picks
+// the fragment version on this llvmpipe context and follows auto_impl's rule for other renderer
+// strings; every output a compute version writes has a format image load/store accepts; the
+// SDK's dispatch on a probe pass covers exactly its rectangle, and its misuse is a clear error.
 #include "camera.hpp"
 #include "executor.hpp"
 #include "frame_capture.hpp"
