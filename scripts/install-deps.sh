@@ -19,7 +19,9 @@ PKGS=(
   libgtest-dev libbenchmark-dev                     # tests and benchmarks
   libembree-dev                                     # ray-traced AO reference of `pathlet quality` (Embree 3)
   xvfb                                              # window tests of `pathlet view` (private X server)
-  libimgui-dev libstb-dev                           # the panels of `pathlet view` (Dear ImGui)
+  libimgui-dev libstb-dev                           # the panels of `pathlet view` (Dear ImGui); stb: PNG in a
+                                                    # lean build, the overlay's built-in font
+  patchelf                                          # scripts/bundle.sh: RUNPATH $ORIGIN on bundled libraries
   python3-numpy python3-pil                         # figure scripts (scripts/aa-figures.sh, real-data-sheet.sh)
   python3-dev pybind11-dev python3-pybind11         # import pathlet (engine/apps/python)
   python3-matplotlib python3-pytest                 # pathlet.plot, bench --plots; the module's tests

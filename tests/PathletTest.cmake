@@ -2,7 +2,7 @@
 #
 # A GoogleTest executable registered with ctest. A test labelled `gl` depends on
 # pathlet_runtime: every built-in pass plugin, its shaders, the shared shaders and graphs and
-# the `pathlet` command. So a test never runs against a stale plugin or shader, and no test
+# the `pathlet` command (and the test fixture plugins). So a test never runs against a stale plugin or shader, and no test
 # lists its dependencies by hand. LIBS: pathlet::internal for the engine with its internals,
 # pathlet_data for the CPU-only data code.
 # PATHLET_TEST_SOURCE_DIR is the folder of the first source (goldens/ and fixtures beside it).
@@ -25,6 +25,8 @@ set(PATHLET_TEST_ENV "PATHLET_UPDATE_GOLDENS=0" "XDG_CONFIG_HOME=${PROJECT_BINAR
 if(NOT TARGET pathlet_runtime)
   add_custom_target(pathlet_runtime)
 endif()
+# The test fixture plugins (pathlet_add_pass(... NO_INSTALL)): GL tests get them beside the runtime.
+add_custom_target(pathlet_test_fixtures)
 
 function(pathlet_add_test name)
   cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
@@ -40,7 +42,7 @@ function(pathlet_add_test name)
     PATHLET_BUILD_DIR="${PROJECT_BINARY_DIR}"
     PATHLET_CLI="${PROJECT_BINARY_DIR}/bin/pathlet")
   if("gl" IN_LIST T_LABELS)
-    add_dependencies(${name} pathlet_runtime)
+    add_dependencies(${name} pathlet_runtime pathlet_test_fixtures)
   endif()
   # The environment goes through `env` as the test's launcher: gtest_discover_tests passes
   # PROPERTIES as name/value pairs, so a list-valued ENVIRONMENT set only its first variable

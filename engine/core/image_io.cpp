@@ -2,7 +2,11 @@
 
 #include "util/atomic_file.hpp"
 
+#include <pathlet_build_features.hpp>
+
+#if PATHLET_WITH_OPENIMAGEIO  // else PNG through stb: image_io_stb.cpp
 #include <OpenImageIO/imageio.h>
+#endif
 
 #include <algorithm>
 #include <cctype>
@@ -15,8 +19,17 @@ namespace fs = std::filesystem;
 
 namespace pathlet {
 
+void check_image_shape(const Image& img, const std::string& path) {
+    if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
+        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
+        throw std::runtime_error(path + ": cannot write image: inconsistent image (" + std::to_string(img.width) +
+                                 "x" + std::to_string(img.height) + "x" + std::to_string(img.channels) + ", " +
+                                 std::to_string(img.pixels.size()) + " values)");
+}
+
 namespace {
 
+#if PATHLET_WITH_OPENIMAGEIO
 std::string lower_extension(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -25,14 +38,6 @@ std::string lower_extension(const std::string& path) {
 
 bool keeps_float(const std::string& ext, const Image& img) {
     return ext == ".exr" || ext == ".hdr" || ((ext == ".tif" || ext == ".tiff") && img.is_float);
-}
-
-void check_shape(const Image& img, const std::string& path) {
-    if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4 ||
-        img.pixels.size() != size_t(img.width) * size_t(img.height) * size_t(img.channels))
-        throw std::runtime_error(path + ": cannot write image: inconsistent image (" + std::to_string(img.width) +
-                                 "x" + std::to_string(img.height) + "x" + std::to_string(img.channels) + ", " +
-                                 std::to_string(img.pixels.size()) + " values)");
 }
 
 // Drops alpha (for JPEG and friends); returns values in the layout that is written.
@@ -44,6 +49,7 @@ std::vector<float> select_channels(const Image& img, int channels) {
         out.insert(out.end(), img.pixels.begin() + long(i), img.pixels.begin() + long(i) + channels);
     return out;
 }
+#endif
 
 GLenum gl_format_for(int channels) {
     switch (channels) {
@@ -75,8 +81,9 @@ std::vector<uint8_t> to_rgba8(const Image& img) {
     return out;
 }
 
+#if PATHLET_WITH_OPENIMAGEIO
 void write_image(const std::string& path, const Image& img) {
-    check_shape(img, path);
+    check_image_shape(img, path);
     const std::string ext = lower_extension(path);
     auto out = ext.empty() ? OIIO::ImageOutput::create("png") : OIIO::ImageOutput::create(path);
     if (!out) throw std::runtime_error(path + ": cannot write image: " + OIIO::geterror());
@@ -130,6 +137,7 @@ Image read_image(const std::string& path) {
     in->close();
     return img;
 }
+#endif
 
 static Image read_texture_as(GLuint tex, int w, int h, int mip, int channels, GLenum format);
 

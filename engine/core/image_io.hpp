@@ -1,5 +1,6 @@
-// Images on the CPU side: reading/writing files through OpenImageIO (never half-written:
-// temp name + rename), reading GL textures back, and capture path patterns.
+// Images on the CPU side: reading/writing files through OpenImageIO, or PNG through stb in a
+// build without it (image_io_stb.cpp; never half-written: temp name + rename), reading GL
+// textures back, and capture path patterns.
 #pragma once
 
 #include <pathlet/gl.hpp>
@@ -32,6 +33,8 @@ std::vector<uint8_t> to_rgba8(const Image& img);
 // extension, then rename. Throws std::runtime_error naming the file.
 void write_image(const std::string& path, const Image& img);
 Image read_image(const std::string& path);  // throws std::runtime_error naming the file
+// Throws std::runtime_error naming `path` unless the size, channels and values agree (before a write).
+void check_image_shape(const Image& img, const std::string& path);
 
 // Reads mip level `mip` of a 2D texture as float with glGetTextureImage; w, h are that
 // level's size (checked). GL's bottom-up rows are flipped to top row first.

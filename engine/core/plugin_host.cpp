@@ -22,8 +22,11 @@ namespace pathlet {
 
 std::string engine_library_dir() {
     Dl_info info{};
+    // Canonical: a RUNPATH like $ORIGIN/../../.. (the installed Python module's) gives a name
+    // with "..", whose lexical parent is not the folder above.
+    std::error_code ec;
     if (dladdr(reinterpret_cast<void*>(&engine_library_dir), &info) && info.dli_fname)
-        return fs::absolute(fs::path(info.dli_fname)).parent_path().string();
+        return fs::weakly_canonical(fs::absolute(fs::path(info.dli_fname)), ec).parent_path().string();
     return ".";
 }
 
@@ -35,6 +38,8 @@ std::string engine_share_dir() {
     if (fs::exists(installed / "shaders")) return installed.string();
     return PATHLET_SOURCE_DIR;  // running from an unusual place inside the build tree
 }
+
+std::string share_dir() { return engine_share_dir(); }  // the SDK's name for it (pass.hpp)
 
 std::vector<std::string> PluginHost::search_path(const std::vector<std::string>& extra_dirs) {
     std::vector<std::string> dirs = extra_dirs;

@@ -4,7 +4,8 @@
 // centred; for the direction colour map an x/y/z key), sized from the output height so it is
 // crisp and equally large at any resolution. Streamlines without time get neither clock nor
 // speed. Text is rasterised with FreeType (text_raster.*); with show = false the image passes
-// through bit for bit.
+// through bit for bit. Labels never cost the picture: a font that is missing or cannot be used
+// gives one warning and the built-in font (builtin_font.cpp).
 #include "text_raster.hpp"
 
 #include <pathlet/gpu_scene.hpp>
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace {
@@ -52,6 +54,20 @@ struct Label {
     }
 };
 
+// The text raster for `font`, or the built-in font with one warning per font file and process
+// (setup runs again on every resize and parameter change).
+std::unique_ptr<overlay::TextRaster> make_raster(const std::string& font, int px) {
+    try {
+        return std::make_unique<overlay::TextRaster>(font, px);
+    } catch (const std::exception& e) {
+        static std::set<std::string> warned;
+        if (warned.insert(font).second)
+            std::fprintf(stderr, "warning: overlay: %s; the labels use the built-in font (set overlay.font to a .ttf file)\n",
+                         e.what());
+        return std::make_unique<overlay::TextRaster>(px);
+    }
+}
+
 // Legend numbers with as many decimals as their size needs (1250, 12.5, 0.35).
 std::string format_speed(float v) {
     char buf[32];
@@ -71,7 +87,7 @@ public:
                                           : std::clamp(int(std::lround(float(h) / 28.0f)), 10, 400);
         const std::string font = p.s("font").empty() ? overlay::default_font() : p.s("font");
         if (!raster_ || font != font_file_ || raster_->pixel_size() != font_px_) {
-            raster_ = std::make_unique<overlay::TextRaster>(font, font_px_);
+            raster_ = make_raster(font, font_px_);
             font_file_ = font;
         }
         const pathlet::GpuScene& scene = ctx.scene();
@@ -203,7 +219,8 @@ PATHLET_PLUGIN("overlay", {
                                 "(else the legend just says \"speed\")")
                   .param_float("font_px", 0.0, 0.0, 400.0, "text height in pixels; 0 = auto: output height / 28")
                   .param_string("font", "", "a TrueType/OpenType font file (.ttf, .otf, .ttc; nothing else is opened); empty = "
-                                            "DejaVu Sans (fonts-dejavu-core)")
+                                            "DejaVu Sans (share/pathlet/fonts, else fonts-dejavu-core); one that cannot be "
+                                            "used gives a warning and the built-in font")
                   .param_color("text_color", {0.12f, 0.12f, 0.12f}, "colour of the text and the bar's frame")
                   .input_texture("color", "rgba8", "the finished image")
                   .output_texture("final", "rgba8", "the image with time and legend")

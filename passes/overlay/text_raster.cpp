@@ -1,10 +1,14 @@
 #include "text_raster.hpp"
 
+#include <pathlet/pass.hpp>
+
 #include <ft2build.h>
 #include FT_FREETYPE_H
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -17,10 +21,11 @@ struct TextRaster::Impl {
 };
 
 std::string default_font() {
-    for (const char* f : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-                          "/usr/share/fonts/dejavu/DejaVuSans.ttf"})
+    const std::string shipped = (std::filesystem::path(pathlet::share_dir()) / "fonts" / "DejaVuSans.ttf").string();
+    for (const std::string& f : {shipped, std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"),
+                                 std::string("/usr/share/fonts/dejavu/DejaVuSans.ttf")})
         if (std::filesystem::exists(f)) return f;
-    return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // the error names the expected place
+    return shipped;  // the warning names the place the font is expected
 }
 
 void check_font_file(const std::string& path) {
@@ -33,11 +38,16 @@ void check_font_file(const std::string& path) {
     if (lower != ".ttf" && lower != ".otf" && lower != ".ttc")
         throw std::runtime_error("font '" + path + "' refused: not a font file name (" + allowed + ")");
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    if (st.type() == std::filesystem::file_type::not_found) throw std::runtime_error("font '" + path + "' not found");
+    if (ec) throw std::runtime_error("font '" + path + "' cannot be read: " + ec.message());
+    if (st.type() != std::filesystem::file_type::regular)
         throw std::runtime_error("font '" + path + "' refused: not a regular file (" + allowed + ")");
     // Then its first four bytes: the sfnt versions of TrueType and OpenType, or a collection.
     char magic[4] = {};
-    std::ifstream(path, std::ios::binary).read(magic, 4);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("font '" + path + "' cannot be read: " + std::strerror(errno));
+    in.read(magic, 4);
     const std::string m(magic, 4);
     if (m != std::string("\0\1\0\0", 4) && m != "true" && m != "typ1" && m != "OTTO" && m != "ttcf")
         throw std::runtime_error("font '" + path + "' refused: its content is not a TrueType/OpenType font (" + allowed + ")");
@@ -55,7 +65,10 @@ TextRaster::TextRaster(const std::string& font_file, int pixel_size) : impl_(new
     FT_Set_Pixel_Sizes(impl_->face, 0, FT_UInt(std::max(pixel_size, 1)));
 }
 
+TextRaster::TextRaster(int pixel_size) : size_(pixel_size) {}
+
 TextRaster::~TextRaster() {
+    if (!impl_) return;
     if (impl_->face) FT_Done_Face(impl_->face);
     if (impl_->lib) FT_Done_FreeType(impl_->lib);
 }
@@ -101,6 +114,7 @@ std::vector<uint32_t> decode(const std::string& s) {
 }  // namespace
 
 TextBitmap TextRaster::render(const std::string& utf8) const {
+    if (!impl_) return render_builtin(utf8, size_);
     const std::vector<uint32_t> cps = decode(utf8);
     FT_Face face = impl_->face;
     TextBitmap t;

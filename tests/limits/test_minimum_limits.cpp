@@ -4,7 +4,6 @@
 // them, so a graph that renders here renders on any conforming driver. It must render, and
 // render the same picture: the limits change where things are bound, never what is drawn.
 #include "frame_capture.hpp"
-#include "phantom/phantom.hpp"
 #include "shipped_graphs.hpp"
 
 #include <gtest/gtest.h>
@@ -14,11 +13,6 @@
 using namespace pathlet;
 
 namespace {
-
-const Scene& phantom_small() {
-    static const Scene s = phantom::make_phantom(phantom::phantom_preset("small"), {});
-    return s;
-}
 
 struct MinimumLimits {
     MinimumLimits() { ::setenv("PATHLET_GL_LIMITS", "minimum", 1); }
@@ -35,12 +29,12 @@ void expect_same_under_minimum(const ShippedGraph& g) {
     std::vector<std::string> outputs;
     for (const auto& o : g.file.outputs) outputs.push_back(o.resource);
     ASSERT_FALSE(outputs.empty());
-    const Frame normal = render_frame(test_runtime(), phantom_small(), opt, outputs);
+    const Frame normal = render_frame(test_runtime(), small_phantom_scene(), opt, outputs);
     Frame minimum;
     {
         MinimumLimits m;
         try {
-            minimum = render_frame(test_runtime(), phantom_small(), opt, outputs);
+            minimum = render_frame(test_runtime(), small_phantom_scene(), opt, outputs);
         } catch (const std::exception& e) {
             ADD_FAILURE() << g.name << " does not run on a minimal GL 4.5 driver: " << e.what();
             return;

@@ -1,7 +1,7 @@
 // The study's picture on real GL (llvmpipe): edge_aa against a 4x4 supersampled render of the
 // same graph (the issue's RMS and speckle figures, on tiny scenes), halos present and at least
 // about a pixel wide at every line width from 1 to 20 px, the overlay (golden, time label,
-// legend, bad font) and `render --ssaa` (size, box filter).
+// legend, a missing or bad font) and `render --ssaa` (size, box filter).
 #include "frame_capture.hpp"
 #include "golden.hpp"
 #include "image_io.hpp"
@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #ifndef BUNDLE_W
 #define BUNDLE_W 320
 #define BUNDLE_H 240
@@ -322,19 +323,93 @@ TEST(Overlay, TimeLabelFollowsTheClockAndNothingElseMoves) {
     EXPECT_EQ(elsewhere, 0u) << "whole lines (window 0): only the label changes";
 }
 
-TEST(Overlay, MissingFontIsAClearErrorNamingTheFile) {
+// A render's picture and what it printed on stderr (the overlay's font warnings).
+std::pair<Image, std::string> render_with_stderr(const std::vector<std::string>& sets) {
+    testing::internal::CaptureStderr();
+    Image img;
     try {
-        render_image(two_speed_lines_scene(), "variant1_lineao", {"overlay.font=/no/such/font.ttf"}, {64, 48});
-        FAIL() << "a missing font must fail";
-    } catch (const std::exception& e) {
-        const std::string m = e.what();
-        EXPECT_NE(m.find("/no/such/font.ttf"), std::string::npos) << m;
-        EXPECT_NE(m.find("overlay"), std::string::npos) << m;
+        img = render_image(two_speed_lines_scene(), "variant1_lineao", sets, {320, 180});
+    } catch (...) {
+        testing::internal::GetCapturedStderr();
+        throw;
     }
+    return {img, testing::internal::GetCapturedStderr()};
+}
+
+size_t count(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+// Labels never cost the picture (issue 33): a font file that is not there gives one warning
+// saying "not found" and the built-in font; the lines are the picture without an overlay.
+TEST(Overlay, MissingFontWarnsOnceAndKeepsThePicture) {
+    const std::string font = scratch("no_such_folder") + "/DejaVuSans.ttf";  // the user's overlay.font
+    const auto [img, err] = render_with_stderr({"window=3", "overlay.font=" + font});
+    const std::string warning = "warning: overlay: font '" + font + "' not found; the labels use the built-in font";
+    EXPECT_EQ(count(err, warning), 1u) << err;
+    EXPECT_EQ(count(err, "warning"), 1u) << err;
+    const auto [again, err2] = render_with_stderr({"window=3", "overlay.font=" + font});  // setup once more
+    EXPECT_EQ(count(err2, "warning"), 0u) << "one warning per font, not one per setup: " << err2;
+    EXPECT_EQ(overlay_diff(img, again).label + overlay_diff(img, again).elsewhere, 0u);
+
+    const Image bare = render_image(two_speed_lines_scene(), "variant1_lineao", {"window=3", "overlay=false"}, {320, 180});
+    const Image dejavu = render_image(two_speed_lines_scene(), "variant1_lineao", {"window=3"}, {320, 180});
+    size_t lines = 0, outside = 0, label = 0, label_vs_dejavu = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            bool diff = false, font_diff = false;
+            for (int c = 0; c < 4; ++c) {
+                diff |= img.at(x, y, c) != bare.at(x, y, c);
+                font_diff |= img.at(x, y, c) != dejavu.at(x, y, c);
+            }
+            const bool time_label = x < 100 && y < 30, legend = x >= 200;
+            lines += bare.at(x, y, 0) + bare.at(x, y, 1) + bare.at(x, y, 2) < 2.4f;
+            outside += diff && !time_label && !legend;
+            label += diff && time_label;
+            label_vs_dejavu += font_diff && time_label;
+        }
+    EXPECT_GT(lines, 150u) << "the scene's lines are drawn";
+    EXPECT_EQ(outside, 0u) << "outside the labels the picture is the one without an overlay";
+    EXPECT_GT(label, 30u) << "the time label is drawn in the built-in font";
+    EXPECT_GT(label_vs_dejavu, 30u) << "and not in DejaVu Sans";
+}
+
+// The default font is the share folder's (a bundle carries it): a broken one there is what the
+// overlay opens and names, rather than another font found elsewhere.
+TEST(Overlay, DefaultFontComesFromTheShareFolder) {
+    namespace fs = std::filesystem;
+    const fs::path share = scratch("share");
+    fs::remove_all(share);
+    fs::create_directories(share / "fonts");
+    const fs::path built = fs::path(PATHLET_BUILD_DIR) / "share" / "pathlet";
+    ASSERT_TRUE(fs::exists(built / "fonts" / "DejaVuSans.ttf")) << "the build's share folder carries the label font";
+    ASSERT_TRUE(fs::exists(built / "fonts" / "LICENSE-DejaVu.txt")) << "with its licence";
+    fs::create_directory_symlink(built / "shaders", share / "shaders");
+    fs::create_directory_symlink(built / "graphs", share / "graphs");
+    std::ofstream(share / "fonts" / "DejaVuSans.ttf") << "not a font";
+    setenv("PATHLET_SHARE_DIR", share.c_str(), 1);
+    const auto result = [] {
+        try {
+            return render_with_stderr({"window=3"});
+        } catch (...) {
+            unsetenv("PATHLET_SHARE_DIR");
+            throw;
+        }
+    }();
+    unsetenv("PATHLET_SHARE_DIR");
+    const std::string& err = result.second;
+    EXPECT_EQ(count(err, "warning: overlay: font '" + (share / "fonts" / "DejaVuSans.ttf").string() +
+                             "' refused: its content is not a TrueType/OpenType font"),
+              1u)
+        << err;
+    fs::remove_all(share);
 }
 
 // overlay.font comes from a graph: only a regular .ttf/.otf/.ttc file that starts like a font
-// is opened; anything else is refused with what is allowed, before FreeType sees it.
+// is opened; anything else is refused with what is allowed, before FreeType sees it, and the
+// labels use the built-in font.
 TEST(Overlay, FontParameterOpensOnlyFontFiles) {
     const std::filesystem::path dir = std::filesystem::path(PATHLET_TEST_BINARY_DIR) / "font_checks";
     std::filesystem::remove_all(dir);
@@ -344,14 +419,10 @@ TEST(Overlay, FontParameterOpensOnlyFontFiles) {
              {"/etc/passwd", "refused: not a font file name"},
              {(dir / "passwd.ttf").string(), "refused: its content is not a TrueType/OpenType font"},
              {(dir / "folder.ttf").string(), "refused: not a regular file"}}) {
-        try {
-            render_image(two_speed_lines_scene(), "variant1_lineao", {"overlay.font=" + font}, {64, 48});
-            ADD_FAILURE() << font << " was accepted";
-        } catch (const std::exception& e) {
-            const std::string m = e.what();
-            EXPECT_NE(m.find("font '" + font + "' " + why), std::string::npos) << m;
-            EXPECT_NE(m.find("allowed: regular TrueType/OpenType files named .ttf, .otf or .ttc"), std::string::npos) << m;
-        }
+        const auto [img, err] = render_with_stderr({"overlay.font=" + font});
+        EXPECT_EQ(count(err, "warning: overlay: font '" + font + "' " + why), 1u) << err;
+        EXPECT_NE(err.find("allowed: regular TrueType/OpenType files named .ttf, .otf or .ttc"), std::string::npos) << err;
+        EXPECT_EQ(img.width, 320) << "the picture is there";
     }
     std::filesystem::remove_all(dir);
 }

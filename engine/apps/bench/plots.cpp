@@ -10,19 +10,24 @@
 #ifndef PATHLET_PYTHON
 #define PATHLET_PYTHON "python3"
 #endif
+#ifndef PATHLET_INSTALL_PYTHONDIR
+#define PATHLET_INSTALL_PYTHONDIR "lib/python3/site-packages"
+#endif
 
 namespace pathlet::cli::bench {
 
 std::string write_matplotlib_plots(const std::string& dir) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    // build/bin/pathlet -> build/python (the package next to the module); installed, the
-    // package is in the interpreter's site-packages already.
-    const fs::path tree = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "python";
+    // build/bin/pathlet -> build/python (the package next to the module); installed (or in a
+    // bundle), PREFIX/bin/pathlet -> PREFIX/lib/python3.X/site-packages.
+    const fs::path prefix = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path();
     std::string pythonpath;
-    if (!ec && fs::is_regular_file(tree / "pathlet" / "plot.py")) {
+    for (const fs::path& tree : {prefix / "python", prefix / PATHLET_INSTALL_PYTHONDIR}) {
+        if (ec || !fs::is_regular_file(tree / "pathlet" / "plot.py")) continue;
         pythonpath = tree.string();
         if (const char* old = std::getenv("PYTHONPATH"); old && *old) pythonpath += ":" + std::string(old);
+        break;
     }
     const std::string python = PATHLET_PYTHON, results = dir + "/results.json";
     std::vector<std::string> args = {python, "-m", "pathlet.plot", results, "--out", dir};

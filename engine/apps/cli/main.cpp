@@ -1,5 +1,6 @@
 // pathlet: the command-line front end. Each subcommand lives in its own cmd_*.cpp.
 #include "args.hpp"
+#include "build_info.hpp"
 #include "commands.hpp"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
         return args.empty() ? 2 : 0;
     }
     if (args[0] == "--version") {
-        std::printf("pathlet %s\n", PATHLET_VERSION);
+        std::printf("pathlet %s\n%s\n", PATHLET_VERSION, pathlet::build_description().c_str());
         return 0;
     }
     for (const auto& c : commands()) {

@@ -8,6 +8,7 @@
 #include "bench/experiment.hpp"
 #include "bench/run_experiment.hpp"
 #include "bench/report.hpp"
+#include "build_info.hpp"
 #include "cli/scene_args.hpp"
 #include "executor.hpp"
 #include "formats.hpp"
@@ -487,6 +488,7 @@ PYBIND11_MODULE(_pathlet, m) {
         .def_property_readonly("wall_triangles", [](const Scene& s) { return s.mesh ? s.mesh->index.size() / 3 : 0; })
         .def("arrays", &scene_arrays);
 
+    m.def("build_info", &build_description);
     m.def("phantom", [](const std::string& preset) {
         cli::SceneSource src;
         src.phantom = preset;

@@ -210,6 +210,7 @@ json patch_document(const std::string& graph_path, const json& full, const json&
 }  // namespace
 
 void check_quality_options(const QualityOptions& q) {
+    RayTracedAo::require();  // before any work, in a build without Embree
     if (q.rays < 1) throw std::invalid_argument("rays must be >= 1 (got " + std::to_string(q.rays) + ")");
     if (q.flicker_rays < 0) throw std::invalid_argument("flicker rays must be >= 0 (got " + std::to_string(q.flicker_rays) + ")");
     if (q.time.times().size() < 2) throw std::invalid_argument("time must give at least two frames (A:B:STEP)");

@@ -19,6 +19,11 @@ struct Tube {
 
 class RayTracedAo {
  public:
+  // False in a build without Embree (PATHLET_WITH_EMBREE=OFF: rt_ao_absent.cpp), where the
+  // constructor throws what in_this_build() says.
+  static bool in_this_build();
+  // Throws std::runtime_error saying the reference is not in this build, unless it is.
+  static void require();
   explicit RayTracedAo(const std::vector<Tube>& tubes);
   ~RayTracedAo();
   RayTracedAo(const RayTracedAo&) = delete;

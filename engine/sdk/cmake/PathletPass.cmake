@@ -5,7 +5,8 @@
 # so) whose shaders travel with it in a folder pathlet_<name>/ beside it (build tree and install
 # tree alike), so the engine finds them.
 # Used by the built-in passes and, through find_package(pathlet), by out-of-tree plugins.
-# In tree, the plugin and its shaders join pathlet_runtime (what every GL test depends on) and
+# In tree, the plugin and its shaders join pathlet_runtime (what every GL test depends on; a
+# NO_INSTALL test fixture joins pathlet_test_fixtures) and
 # TESTS build as test_<name> (GoogleTest, labelled gl, with the test support library), so a
 # pass's tests live in its folder and always run against its current code and shaders.
 function(pathlet_add_pass name)
@@ -44,10 +45,16 @@ function(pathlet_add_pass name)
       COMMAND ${CMAKE_COMMAND} -E copy_if_different ${P_SHADERS} ${PATHLET_PASS_OUTPUT_DIR}/pathlet_${name}/
       WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
   endif()
-  if(TARGET pathlet_runtime)
-    add_dependencies(pathlet_runtime ${name})
+  # Test fixtures (NO_INSTALL) join the tests' own target, so the runtime (what scripts/main.sh
+  # builds) holds no test code.
+  set(_joins pathlet_runtime)
+  if(P_NO_INSTALL AND TARGET pathlet_test_fixtures)
+    set(_joins pathlet_test_fixtures)
+  endif()
+  if(TARGET ${_joins})
+    add_dependencies(${_joins} ${name})
     if(P_SHADERS)
-      add_dependencies(pathlet_runtime ${name}_shaders)
+      add_dependencies(${_joins} ${name}_shaders)
     endif()
   endif()
   if(P_TESTS AND COMMAND pathlet_add_test)

@@ -126,6 +126,8 @@ struct PerStage {
     int combined = 0;
 };
 
+}  // namespace
+
 bool is_image_type(GLenum t) {
     switch (t) {
         case GL_IMAGE_1D: case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_BUFFER: case GL_IMAGE_2D_ARRAY:
@@ -152,6 +154,8 @@ bool is_sampler_type(GLenum t) {
     }
 }
 
+namespace {
+
 // Which stages the program has, from its attached shaders.
 void stages_of(GLuint prog, bool has[kStages]) {
     GLint n = 0;
@@ -168,9 +172,8 @@ void stages_of(GLuint prog, bool has[kStages]) {
     }
 }
 
-// Counts the resources of `interface` (uniforms: those `keep` accepts by type) per stage.
-template <class Keep>
-PerStage count(GLuint prog, GLenum interface, int last_stage, Keep keep, std::vector<int>* bindings = nullptr) {
+// Counts the resources of `interface` per stage (uniforms: those `keep` accepts by type).
+PerStage count(GLuint prog, GLenum interface, int last_stage, bool (*keep)(GLenum), std::vector<int>* bindings) {
     PerStage c;
     GLint n = 0;
     glGetProgramInterfaceiv(prog, interface, GL_ACTIVE_RESOURCES, &n);
@@ -180,7 +183,7 @@ PerStage count(GLuint prog, GLenum interface, int last_stage, Keep keep, std::ve
             const GLenum props[] = {GL_TYPE, GL_ARRAY_SIZE, GL_BLOCK_INDEX};
             GLint v[3] = {};
             glGetProgramResourceiv(prog, interface, GLuint(i), 3, props, 3, nullptr, v);
-            if (v[2] != -1 || !keep(GLenum(v[0]))) continue;
+            if (v[2] != -1 || (keep && !keep(GLenum(v[0])))) continue;
             size = std::max(1, v[1]);
         } else if (bindings) {
             const GLenum prop = GL_BUFFER_BINDING;
@@ -241,32 +244,41 @@ void check_program_limits(GLuint prog, const std::string& what) {
         if (combined && c.combined > L.get(combined)) fail(std::string("uses ") + kind + " in all:", c.combined, combined);
     };
 
-    const PerStage samplers = count(prog, GL_UNIFORM, last, is_sampler_type);
-    const GLenum sampler_limits[kStages] = {GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, GL_MAX_GEOMETRY_TEXTURE_IMAGE_UNITS,
-                                            GL_MAX_TEXTURE_IMAGE_UNITS, GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS};
-    check(samplers, "samplers", sampler_limits, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS);
-
-    const PerStage images = count(prog, GL_UNIFORM, last, is_image_type);
-    const GLenum image_limits[kStages] = {GL_MAX_VERTEX_IMAGE_UNIFORMS, GL_MAX_GEOMETRY_IMAGE_UNIFORMS,
-                                          GL_MAX_FRAGMENT_IMAGE_UNIFORMS, GL_MAX_COMPUTE_IMAGE_UNIFORMS};
-    check(images, "image uniforms", image_limits, GL_MAX_COMBINED_IMAGE_UNIFORMS);
-
-    std::vector<int> storage_bindings, uniform_bindings;
-    const PerStage storage = count(prog, GL_SHADER_STORAGE_BLOCK, last, [](GLenum) { return true; }, &storage_bindings);
-    const GLenum storage_limits[kStages] = {GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS,
-                                            GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS};
-    check(storage, "shader storage blocks", storage_limits, GL_MAX_COMBINED_SHADER_STORAGE_BLOCKS);
-    for (int b : storage_bindings)
-        if (b >= L.get(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS))
-            fail("binds a shader storage block to binding point", b, GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);
-
-    const PerStage uniform_blocks = count(prog, GL_UNIFORM_BLOCK, last, [](GLenum) { return true; }, &uniform_bindings);
-    const GLenum block_limits[kStages] = {GL_MAX_VERTEX_UNIFORM_BLOCKS, GL_MAX_GEOMETRY_UNIFORM_BLOCKS,
-                                          GL_MAX_FRAGMENT_UNIFORM_BLOCKS, GL_MAX_COMPUTE_UNIFORM_BLOCKS};
-    check(uniform_blocks, "uniform blocks", block_limits, GL_MAX_COMBINED_UNIFORM_BLOCKS);
-    for (int b : uniform_bindings)
-        if (b >= L.get(GL_MAX_UNIFORM_BUFFER_BINDINGS))
-            fail("binds a uniform block to binding point", b, GL_MAX_UNIFORM_BUFFER_BINDINGS);
+    // Per kind of resource: what counts, its per-stage and combined limits, its binding limit.
+    struct Kind {
+        GLenum interface;
+        bool (*keep)(GLenum type);
+        const char* what;
+        GLenum per_stage[kStages], combined, bindings;
+    };
+    static const Kind kinds[] = {
+        {GL_UNIFORM, is_sampler_type, "samplers",
+         {GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, GL_MAX_GEOMETRY_TEXTURE_IMAGE_UNITS, GL_MAX_TEXTURE_IMAGE_UNITS,
+          GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS},
+         GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, 0},
+        {GL_UNIFORM, is_image_type, "image uniforms",
+         {GL_MAX_VERTEX_IMAGE_UNIFORMS, GL_MAX_GEOMETRY_IMAGE_UNIFORMS, GL_MAX_FRAGMENT_IMAGE_UNIFORMS,
+          GL_MAX_COMPUTE_IMAGE_UNIFORMS},
+         GL_MAX_COMBINED_IMAGE_UNIFORMS, 0},
+        {GL_SHADER_STORAGE_BLOCK, nullptr, "shader storage blocks",
+         {GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS,
+          GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS},
+         GL_MAX_COMBINED_SHADER_STORAGE_BLOCKS, GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS},
+        {GL_UNIFORM_BLOCK, nullptr, "uniform blocks",
+         {GL_MAX_VERTEX_UNIFORM_BLOCKS, GL_MAX_GEOMETRY_UNIFORM_BLOCKS, GL_MAX_FRAGMENT_UNIFORM_BLOCKS,
+          GL_MAX_COMPUTE_UNIFORM_BLOCKS},
+         GL_MAX_COMBINED_UNIFORM_BLOCKS, GL_MAX_UNIFORM_BUFFER_BINDINGS},
+    };
+    PerStage counted[4];
+    for (size_t k = 0; k < 4; ++k) {
+        const Kind& kind = kinds[k];
+        std::vector<int> bindings;
+        counted[k] = count(prog, kind.interface, last, kind.keep, kind.bindings ? &bindings : nullptr);
+        check(counted[k], kind.what, kind.per_stage, kind.combined);
+        for (int b : bindings)
+            if (b >= L.get(kind.bindings)) fail(std::string("binds one of its ") + kind.what + " to binding point", b, kind.bindings);
+    }
+    const PerStage &images = counted[1], &storage = counted[2];
 
     // The spec's rule for a whole program: active images + storage blocks + fragment outputs.
     const int outputs = has[kFragment] ? fragment_outputs(prog) : 0;

@@ -196,27 +196,6 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     return prog;
 }
 
-namespace {
-bool is_image(GLenum t) {
-    switch (t) {
-        case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_BUFFER: case GL_IMAGE_2D_ARRAY:
-        case GL_INT_IMAGE_2D: case GL_INT_IMAGE_3D: case GL_INT_IMAGE_BUFFER: case GL_INT_IMAGE_2D_ARRAY:
-        case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D: case GL_UNSIGNED_INT_IMAGE_BUFFER:
-        case GL_UNSIGNED_INT_IMAGE_2D_ARRAY: return true;
-        default: return false;
-    }
-}
-bool is_sampler(GLenum t) {
-    switch (t) {
-        case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_ARRAY:
-        case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_MULTISAMPLE:
-        case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D: case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_ARRAY:
-        case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
-        case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: return true;
-        default: return false;
-    }
-}
-}  // namespace
 
 // Active uniforms of the default block; samplers and images get units 0, 1, ... each in
 // GL's order (what a layout(binding) in the source said is replaced: units are the engine's).
@@ -235,8 +214,8 @@ void ShaderProgram::reflect() {
         name.resize(std::strlen(name.c_str()));
         if (name.size() > 3 && name.compare(name.size() - 3, 3, "[0]") == 0) name.resize(name.size() - 3);
         Uniform u{name, GLenum(v[1]), v[2], v[3]};
-        u.image = is_image(u.type);
-        u.opaque = u.image || is_sampler(u.type);
+        u.image = is_image_type(u.type);
+        u.opaque = u.image || is_sampler_type(u.type);
         uniforms_.push_back(u);
         if (u.opaque) {
             int& next = u.image ? images : samplers;

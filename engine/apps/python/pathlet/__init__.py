@@ -33,7 +33,7 @@ except ImportError as _e:  # the pure-Python parts (pathlet.plot) still work
 
 __all__ = [
     "Scene", "Graph", "Rendered", "Results", "phantom", "load", "from_arrays", "render", "bench",
-    "run_experiment", "quality", "close", "closed", "gl_renderer", "GraphError", "DataError",
+    "run_experiment", "quality", "close", "closed", "gl_renderer", "build_info", "GraphError", "DataError",
     "PassError", "GlError", "ClosedError",
 ]
 
@@ -421,6 +421,12 @@ def quality(graph, scene, time="9:9.4:0.04", size=(320, 180), *, rays=256, flick
 
 
 # ---- the context --------------------------------------------------------------------------------
+
+def build_info():
+    """What this build has and where it runs from (as ``pathlet --version``): lean or full,
+    a bundle or a build tree, the share folder."""
+    return _core().build_info()
+
 
 def gl_renderer():
     """The GL renderer string (creates the process's context if there is none yet)."""

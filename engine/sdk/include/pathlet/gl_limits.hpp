@@ -43,6 +43,10 @@ private:
     std::vector<int> context_;  // by gl_limit_table() index
 };
 
+// GLSL opaque types by GL type enum: a sampler (takes a texture unit) or an image (an image unit).
+bool is_sampler_type(GLenum type);
+bool is_image_type(GLenum type);
+
 // The limits for the current context (queried on first use, again when PATHLET_GL_LIMITS changes).
 // PATHLET_GL_LIMITS: unset or "context" = the context's; "minimum" = the GL 4.5 minimum; anything
 // else is an error naming the variable.

@@ -253,6 +253,10 @@ class GpuScene;
 class ShaderProgram;
 struct PassContextImpl;
 
+// Pathlet's shared data folder (shaders/, graphs/, fonts/): share/pathlet beside libpathlet's
+// folder (build tree, install, bundle alike), or $PATHLET_SHARE_DIR. For data files a pass ships.
+std::string share_dir();
+
 // What a pass sees, in setup() and in execute(). Implemented by the executor.
 class PassContext {
 public:
