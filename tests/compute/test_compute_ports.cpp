@@ -11,7 +11,6 @@
 #include "frame_capture.hpp"
 #include "golden.hpp"
 #include "image_probes.hpp"
-#include "phantom/phantom.hpp"
 
 #include <pathlet/shader.hpp>
 
@@ -29,17 +28,12 @@ namespace {
 
 const glm::ivec2 kOdd{333, 217};  // neither side a multiple of 8
 
-const Scene& phantom_small() {
-    static const Scene s = phantom::make_phantom(phantom::phantom_preset("small"), {});
-    return s;
-}
-
 // The default framing moved to 45 % of its distance: the vessel and its lines overfill the
 // frame, so the passes' border handling (clamped neighbours, the screen rectangle reaching
 // the edge) is exercised.
 const std::string& close_camera() {
     static const std::string path = [] {
-        const Camera c = frame_bounds(phantom_small().bounds(), kOdd);
+        const Camera c = frame_bounds(small_phantom_scene().bounds(), kOdd);
         const glm::vec3 eye = c.target + 0.45f * (c.eye - c.target);
         const std::string file = test_scratch_dir("compute_ports") + "/close_camera.json";
         std::ofstream(file) << "{\"keyframes\": [{\"time\": 0, \"eye\": [" << eye.x << ", " << eye.y << ", " << eye.z
@@ -74,7 +68,7 @@ Capture render_capture(const std::string& graph, const std::vector<std::string>&
     o.quiet = true;
     o.keep = resources;
     Capture c;
-    RenderResult res = render(test_runtime(), phantom_small(), o, [&](const Executor& ex, size_t) {
+    RenderResult res = render(test_runtime(), small_phantom_scene(), o, [&](const Executor& ex, size_t) {
         for (const auto& name : resources) {
             const Texture t = ex.texture(name);
             if (t.mips == 1) {
@@ -275,7 +269,7 @@ Image render_probe(const std::vector<std::string>& sets, const std::string& type
     o.quiet = true;
     o.keep = {"out"};
     Image img;
-    render(probe_runtime(), phantom_small(), o, [&](const Executor& ex, size_t) { img = read_resource(ex.texture("out")); });
+    render(probe_runtime(), small_phantom_scene(), o, [&](const Executor& ex, size_t) { img = read_resource(ex.texture("out")); });
     return img;
 }
 
