@@ -13,6 +13,11 @@
 #   bench_window/, bench_all/          pathlet bench of every shipped variant at 1920x1080 with the
 #                                      1 s window and with every line (--set window=0): results.json,
 #                                      summary.csv; the printed tables in bench_*.txt
+#   compute_GRAPH.txt, compute.txt     fullscreen passes as fragment against compute (issue 34.5):
+#                                      per pass both medians and compute/fragment, interleaved
+#                                      rounds (scripts/bench-compute.sh); the picture with every
+#                                      port forced each way (pathlet imagediff); the overlay's cost
+#                                      with and without its labels
 #   loop.txt                           the render loop's wall clock: variant 1, 1 s window, 250 frames
 #                                      of 1920x1080 with --no-images (and --video where ffmpeg is)
 #   summary.txt                        the lines a person reads first (also printed)
@@ -51,9 +56,9 @@ fi
 
 # What the check renders and times. --quick shrinks everything (the script's own test).
 if [ "$QUICK" = 1 ]; then
-  PHANTOM=small RENDER_SIZE=160x90 BENCH_SIZE=160x90 FRAMES=3 TIME=2 LOOP_TIME=0:0.4:0.04 WINDOW_TIME=2
+  PHANTOM=small RENDER_SIZE=160x90 BENCH_SIZE=160x90 FRAMES=3 TIME=2 LOOP_TIME=0:0.4:0.04 WINDOW_TIME=2 ROUNDS=1
 else
-  PHANTOM=study RENDER_SIZE=960x540 BENCH_SIZE=1920x1080 FRAMES=100 TIME=4.5 LOOP_TIME=0:9.96:0.04 WINDOW_TIME=9
+  PHANTOM=study RENDER_SIZE=960x540 BENCH_SIZE=1920x1080 FRAMES=100 TIME=4.5 LOOP_TIME=0:9.96:0.04 WINDOW_TIME=9 ROUNDS=3
 fi
 VARIANTS=variant1_lineao,variant2_oit,variant2_oit_ao,variant3_geomfade,isl,variant1_vao
 
@@ -155,6 +160,32 @@ bench() {  # $1: name, rest: extra options
 }
 bench window
 bench all --set window=0
+
+step "fullscreen passes: fragment against compute ($BENCH_SIZE, $ROUNDS rounds)"
+# The ports of each graph (the passes with the parameter impl), switched together.
+for spec in "variant1_lineao:gauss_pyramid lineao bilateral edge_aa" "variant1_vao:volume_ao" \
+            "variant1_stable:temporal_ao"; do
+  g=${spec%%:*}
+  PATHLET="$PATHLET" PASSES="${spec#*:}" "$ROOT/scripts/bench-compute.sh" "$ROUNDS" "$BENCH_SIZE" "$g" \
+    --phantom "$PHANTOM" --time "$WINDOW_TIME" --frames "$FRAMES" >"$R/compute_$g.txt" 2>&1 ||
+    { FAILED=1; tail -5 "$R/compute_$g.txt" >&2; }
+  say "compute/fragment, $g:"
+  grep -E '^pass | \* ' "$R/compute_$g.txt" | tee -a "$R/summary.txt"
+done
+ports=(gauss_pyramid lineao bilateral edge_aa)
+for impl in fragment compute; do
+  sets=()
+  for p in "${ports[@]}"; do sets+=(--set "$p.impl=$impl"); done
+  "$PATHLET" render variant1_lineao --phantom "$PHANTOM" --time "$TIME" --size "$RENDER_SIZE" --quiet \
+    --out "$WORK/impl_$impl" "${sets[@]}" >>"$R/compute.txt" 2>&1 || FAILED=1
+done
+{ echo "variant1_lineao, every port impl=fragment against impl=compute:"
+  "$PATHLET" imagediff "$WORK"/impl_fragment/variant1_lineao/*.png "$WORK"/impl_compute/variant1_lineao/*.png \
+    --threshold 1; } >>"$R/compute.txt" 2>&1 || FAILED=1
+say "fragment vs compute picture: $(sed -n 's/^max_levels /max levels /p' "$R/compute.txt") (0 = identical)"
+"$PATHLET" bench variant1_lineao,variant1_lineao --set 2:overlay=false --phantom "$PHANTOM" --size "$BENCH_SIZE" \
+  --time "$WINDOW_TIME" --frames "$FRAMES" --quiet >"$R/bench_overlay.txt" 2>&1 || FAILED=1
+say "overlay with labels / without (the copy alone), ms: $(awk '$1 == "overlay" { printf "%s%s", sep, $2; sep = " / " }' "$R/bench_overlay.txt")"
 
 step "render loop wall clock"
 seconds() {  # wall seconds of a command, its output dropped

@@ -1,5 +1,7 @@
 #include "gl_context.hpp"
 
+#include <pathlet/pass.hpp>
+
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
@@ -209,11 +211,7 @@ std::string GlContext::renderer() const { return gl_string(GL_RENDERER); }
 std::string GlContext::version() const { return gl_string(GL_VERSION); }
 std::string GlContext::vendor() const { return gl_string(GL_VENDOR); }
 
-bool GlContext::is_software() const {
-    std::string r = renderer();
-    return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
-           r.find("SwiftShader") != std::string::npos;
-}
+bool GlContext::is_software() const { return !software_rasterizer(renderer()).empty(); }
 
 std::string GlContext::summary() const {
     return "GL renderer: " + renderer() + " | " + version() + " | " + platform_;

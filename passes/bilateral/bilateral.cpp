@@ -23,11 +23,13 @@ public:
         const float power = ctx.params().f("normal_power");
         for (const auto& d : pathlet::whole_exponent("BILATERAL_NORMAL_POWER", power)) defines.push_back(d);
         if (power == 0.0f) defines.push_back("BILATERAL_NO_NORMAL");
-        prog_ = &ctx.program({"fullscreen.vert", "bilateral.frag"}, defines);
+        compute_ = ctx.use_compute();
+        prog_ = &ctx.fullscreen_program("bilateral.frag", defines);
     }
 
     void execute(pathlet::PassContext& ctx) override {
         const auto& p = ctx.params();
+        ctx.stat(pathlet::kComputeStat, compute_ ? 1.0 : 0.0);
         const float ss = std::max(p.f("sigma_spatial") * ctx.pixel_scale(), 1e-3f);
         prog_->set("u_inv2_sigma_s2", 1.0f / (2.0f * ss * ss));
         prog_->set("u_inv_sigma_d", 1.0f / std::max(p.f("sigma_depth"), 1e-6f));
@@ -59,10 +61,16 @@ private:
             if (copy_background)
                 glCopyImageSubData(color.id, GL_TEXTURE_2D, 0, 0, 0, 0, target.id, GL_TEXTURE_2D, 0, 0, 0, 0,
                                    target.width, target.height, 1);
+            if (compute_) {  // the same pixels: the rectangle, on geometry
+                ctx.dispatch_fullscreen(*prog_, pathlet::lines::screen_rect(ctx, 2), "depth");
+                return;
+            }
             ctx.bind_framebuffer(targets(out), "depth");
             // Covered pixels lie inside the lines' screen rectangle: tiles outside it are skipped.
             pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
             ctx.draw_fullscreen_on_geometry(*prog_);
+        } else if (compute_) {
+            ctx.dispatch_fullscreen(*prog_);
         } else {
             ctx.bind_framebuffer(targets(out));
             prog_->use();
@@ -75,6 +83,7 @@ private:
     }
     pathlet::ShaderProgram* prog_ = nullptr;
     bool write_ao_ = false;
+    bool compute_ = false;
 };
 
 pathlet::PassTypeInfo bilateral_type() {
@@ -98,6 +107,7 @@ pathlet::PassTypeInfo bilateral_type() {
         .output_texture("ao_smooth", "r16f", "the smoothed AO alone, 1 on background (bind it to get it)",
                         {.optional = true})
         .internal_texture("tmp", "r16f", "separable mode: the horizontally filtered AO")
+        .compute_version()
         .make<Bilateral>();
 }
 

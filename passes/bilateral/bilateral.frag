@@ -3,12 +3,34 @@
 // colour. Background pixels (colour alpha 0) are copied unchanged. Separable mode runs it
 // twice (horizontal into `tmp`, vertical with the multiply): 2(2r+1) taps instead of (2r+1)^2. Uniform loop bounds:
 // on llvmpipe they skip the fetches of background pixels instead of running them masked.
+#include "fullscreen_pass.glsl"
 #include "lineao_common.glsl"
 #include "pow_whole.glsl"
 
+uniform bool u_multiply;  // last pass: write colour * ao (final); else the filtered ao alone (tmp)
+
+// The outputs: `final` (colour x AO) or, in the separable mode's first pass, `tmp` (the
+// filtered AO alone); with WRITE_AO also `ao_smooth`, the smoothed AO alone.
+#ifdef FULLSCREEN_COMPUTE
+layout(rgba8) writeonly uniform image2D u_final;
+layout(r16f) writeonly uniform image2D u_tmp;
+void write_color(ivec2 p, vec4 c) {
+    if (u_multiply) imageStore(u_final, p, c);
+    else imageStore(u_tmp, p, c);
+}
+#ifdef WRITE_AO
+layout(r16f) writeonly uniform image2D u_ao_smooth;
+void write_ao(ivec2 p, float ao) {
+    if (u_multiply) imageStore(u_ao_smooth, p, vec4(ao));
+}
+#endif
+#else
 layout(location = 0) out vec4 o_color;
+void write_color(ivec2 p, vec4 c) { o_color = c; }
 #ifdef WRITE_AO
 layout(location = 1) out float o_ao;  // the smoothed AO alone (last pass), for per-fragment use
+void write_ao(ivec2 p, float ao) { o_ao = ao; }
+#endif
 #endif
 uniform sampler2D u_ao;     // LineAO's term; in the vertical pass of the separable mode, `tmp`
 uniform sampler2D u_normal_depth;
@@ -19,15 +41,15 @@ uniform float u_inv_sigma_d;    // 1 / sigma_depth
 uniform float u_normal_power;  // only when not whole (BILATERAL_NORMAL_POWER) nor 0 (BILATERAL_NO_NORMAL)
 uniform bool u_enabled;
 uniform ivec2 u_step;      // (1,0) or (0,1): one axis of the separable filter; (0,0): full 2-D
-uniform bool u_multiply;   // last pass: write colour * ao; else write the filtered ao alone
 
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 p;
+    if (!fullscreen_pixel(p)) return;
     vec4 c = texelFetch(u_color, p, 0);
     if (c.a == 0.0) {  // background: exactly the colour pass's pixel
-        o_color = c;
+        write_color(p, c);
 #ifdef WRITE_AO
-        o_ao = 1.0;
+        write_ao(p, 1.0);
 #endif
         return;
     }
@@ -60,8 +82,8 @@ void main() {
             }
         if (wsum > 1e-6) ao = sum / wsum;  // the centre always has weight 1 unless its normal is 0
     }
-    o_color = u_multiply ? vec4(c.rgb * ao, c.a) : vec4(ao);
+    write_color(p, u_multiply ? vec4(c.rgb * ao, c.a) : vec4(ao));
 #ifdef WRITE_AO
-    o_ao = ao;
+    write_ao(p, ao);
 #endif
 }

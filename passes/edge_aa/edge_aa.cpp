@@ -12,10 +12,14 @@ enum class Alpha { opaque, coverage };  // the choices of `alpha`
 
 class EdgeAA : public pathlet::Pass {
 public:
-    void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"fullscreen.vert", "edge_aa.frag"}); }
+    void setup(pathlet::PassContext& ctx) override {
+        compute_ = ctx.use_compute();
+        prog_ = &ctx.fullscreen_program("edge_aa.frag");
+    }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
+        ctx.stat(pathlet::kComputeStat, compute_ ? 1.0 : 0.0);
         const bool opaque = p.e<Alpha>("alpha") == Alpha::opaque;
         pathlet::Texture src = ctx.texture("color"), dst = ctx.texture("final");
         if (!p.b("enabled") && !opaque) {  // pass through bit for bit
@@ -37,12 +41,17 @@ public:
             glClearBufferfv(GL_COLOR, 0, one);
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         }
+        if (compute_) {
+            ctx.dispatch_fullscreen(*prog_, r);
+            return;
+        }
         pathlet::lines::ScopedScissor clip(r);
         ctx.draw_fullscreen();
     }
 
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
+    bool compute_ = false;
 };
 
 }  // namespace
@@ -60,5 +69,6 @@ PATHLET_PLUGIN("edge_aa", {
                   .input_texture("edge", "rgba8", "the line pass's `edge` output (rim direction and distance)")
                   .input_texture("depth", "depth24", "the line pass's z-buffer: which line is in front")
                   .output_texture("final", "rgba8", "the anti-aliased image")
+                  .compute_version()
                   .make<EdgeAA>());
 })

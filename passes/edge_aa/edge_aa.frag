@@ -5,7 +5,15 @@
 // filter across the rim) and the colour beyond the rim elsewhere; a pixel just outside a line
 // in front of it gets that line's share the same way. Edges against the background, the wall
 // and lines behind all become smooth, and LineAO, computed per pixel before, is untouched.
+#include "fullscreen_pass.glsl"
+
+#ifdef FULLSCREEN_COMPUTE
+layout(rgba8) writeonly uniform image2D u_final;
+void write_final(ivec2 p, vec4 c) { imageStore(u_final, p, c); }
+#else
 layout(location = 0) out vec4 o_color;
+void write_final(ivec2 p, vec4 c) { o_color = c; }
+#endif
 uniform sampler2D u_color;  // the finished image (straight alpha)
 uniform sampler2D u_edge;   // line_edge(): rim direction, distance, line width (not read when disabled)
 uniform sampler2D u_depth;  // the G-buffer z-buffer (background 1)
@@ -34,11 +42,12 @@ ivec2 axis_step(vec2 d) {
 }
 
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 p;
+    if (!fullscreen_pixel(p)) return;
     ivec2 size = textureSize(u_color, 0);
     vec4 result = premultiplied(p);
     if (!u_enabled) {
-        o_color = vec4(result.rgb, 1.0);
+        write_final(p, vec4(result.rgb, 1.0));
         return;
     }
     vec4 e = texelFetch(u_edge, p, 0);
@@ -76,6 +85,6 @@ void main() {
     }
     // Only a line in front of this pixel's surface covers it (one depth fetch, one colour fetch).
     if (best > 0.0 && texelFetch(u_depth, from, 0).r < depth) result = mix(result, premultiplied(from), best);
-    if (u_alpha == 0) o_color = vec4(result.rgb, 1.0);
-    else o_color = result.a > 0.0 ? vec4(result.rgb / result.a, result.a) : texelFetch(u_color, p, 0);
+    if (u_alpha == 0) write_final(p, vec4(result.rgb, 1.0));
+    else write_final(p, result.a > 0.0 ? vec4(result.rgb / result.a, result.a) : texelFetch(u_color, p, 0));
 }

@@ -16,20 +16,21 @@ enum class Mode { gaussian, box };  // the choices of `mode`
 class GaussPyramid : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"fullscreen.vert", "gauss_pyramid.frag"});
+        compute_ = ctx.use_compute();
+        prog_ = &ctx.fullscreen_program("gauss_pyramid.frag");
     }
 
     void execute(pathlet::PassContext& ctx) override {
         const auto& p = ctx.params();
+        ctx.stat(pathlet::kComputeStat, compute_ ? 1.0 : 0.0);
         pathlet::Texture pyr = ctx.texture("pyramid");
         const int levels = std::clamp(p.i("levels"), 1, pyr.mips);
         prog_->use();
         const GLuint input = ctx.texture("normal_depth").id;
         if (p.b("copy_level0")) {
-            ctx.bind_framebuffer({"pyramid"}, "", 0);
             prog_->bind_texture("u_src", input);
             prog_->set("u_mode", 0);
-            ctx.draw_fullscreen();
+            run_level(ctx, pyr, 0, glm::ivec4(0, 0, pyr.width, pyr.height));
         }
         prog_->set("u_mode", p.e<Mode>("mode") == Mode::box ? 2 : 1);
         // Only the lines' screen rectangle can hold geometry: each level is cleared to
@@ -39,13 +40,11 @@ public:
         for (int level = 1; level < levels; ++level) {
             const glm::ivec2 size(std::max(pyr.width >> level, 1), std::max(pyr.height >> level, 1));
             glClearTexImage(pyr.id, level, GL_RGBA, GL_FLOAT, background);
-            pathlet::lines::ScopedScissor clip(pathlet::lines::rect_at_level(rect, level, 2, size));
             // Level 1 reads the input itself; deeper levels read a view of exactly level-1, so
             // the level being written is never sampled and no texture parameter changes
             // (changing BASE/MAX_LEVEL made llvmpipe wait for the previous draw: ~10 ms a level).
             prog_->bind_texture("u_src", level == 1 ? input : level_view(pyr, level - 1));
-            ctx.bind_framebuffer({"pyramid"}, "", level);
-            ctx.draw_fullscreen();
+            run_level(ctx, pyr, level, pathlet::lines::rect_at_level(rect, level, 2, size));
         }
         ctx.stat("levels built", levels);
     }
@@ -55,6 +54,20 @@ public:
     }
 
 private:
+    // Writes mip `level` of the pyramid inside `rect` (that level's pixels): drawn, or dispatched
+    // with the level bound as the image u_pyramid (the dispatch's barrier lets the next level read it).
+    void run_level(pathlet::PassContext& ctx, const pathlet::Texture& pyr, int level, glm::ivec4 rect) {
+        if (compute_) {
+            prog_->bind_image("u_pyramid", pyr.id, pyr.internal_format, GL_WRITE_ONLY, level);
+            ctx.dispatch_fullscreen(*prog_, rect);
+            return;
+        }
+        pathlet::lines::ScopedScissor clip(rect);
+        ctx.bind_framebuffer({"pyramid"}, "", level);
+        prog_->use();
+        ctx.draw_fullscreen();
+    }
+
     // A one-level texture view of `tex` (immutable storage), made once and reused.
     GLuint level_view(const pathlet::Texture& tex, int level) {
         GLuint& v = views_[{tex.id, level}];
@@ -68,6 +81,7 @@ private:
     }
     std::map<std::pair<GLuint, int>, GLuint> views_;
     pathlet::ShaderProgram* prog_ = nullptr;
+    bool compute_ = false;
 };
 
 pathlet::PassTypeInfo gauss_pyramid_type() {
@@ -85,6 +99,7 @@ pathlet::PassTypeInfo gauss_pyramid_type() {
                     "graphs feeding only lineao may turn this off and save one full-screen rgba16f write")
         .input_texture("normal_depth", "rgba16f", "view-space normal (xyz) and normalised linear depth (w)")
         .output_texture("pyramid", "rgba16f", "the pyramid; mip l = level l", {.mips = 0 /* full chain */})
+        .compute_version()
         .make<GaussPyramid>();
 }
 

@@ -59,7 +59,13 @@ public:
     // program keeps its uniforms, and setup() runs again whenever a parameter changes.
     void setup(pathlet::PassContext& ctx) override {
         const auto& p = ctx.params();
-        prog_ = &ctx.program({"fullscreen.vert", "lineao.frag"}, pathlet::whole_exponent("LINEAO_EXPONENT", p.f("exponent")));
+        compute_ = ctx.use_compute();
+        // Half resolution: the term for one pixel in four into the internal texture `half`, then
+        // a depth-aware upsampling into `ao` (lineao_upsample.frag).
+        half_ = p.e<Resolution>("resolution") == Resolution::half;
+        std::vector<std::string> defines = pathlet::whole_exponent("LINEAO_EXPONENT", p.f("exponent"));
+        if (half_) defines.push_back("LINEAO_HALF");  // the compute version's target: the image u_half
+        prog_ = &ctx.fullscreen_program("lineao.frag", defines);
         const Levels L = make_levels(p);
         glm::vec3 light = p.v3("light_dir");
         light = glm::length(light) > 1e-6f ? glm::normalize(light) : glm::vec3(0, 0, 1);
@@ -76,11 +82,8 @@ public:
         prog_->set("u_light", light);
         prog_->set("u_spec_cut", std::pow(1e-4f, 1.0f / p.f("exponent")));
         samples_ = double(L.total);
-        // Half resolution: the term for one pixel in four into the internal texture `half`, then
-        // a depth-aware upsampling into `ao` (lineao_upsample.frag).
-        half_ = p.e<Resolution>("resolution") == Resolution::half;
         if (half_) {
-            upsample_ = &ctx.program({"fullscreen.vert", "lineao_upsample.frag"});
+            upsample_ = &ctx.fullscreen_program("lineao_upsample.frag");
             upsample_->set("u_inv_sigma_d", 1.0f / 0.01f);
         }
     }
@@ -93,11 +96,13 @@ public:
         if (half_) {
             const pathlet::Texture half = ctx.texture("half");
             glClearTexImage(half.id, 0, GL_RED, GL_FLOAT, &one);
-            ctx.bind_framebuffer({"half"});
-            prog_->use();
-            {
-                pathlet::lines::ScopedScissor clip(
-                    pathlet::lines::rect_at_level(rect, 1, 1, glm::ivec2(half.width, half.height)));
+            const glm::ivec4 half_rect = pathlet::lines::rect_at_level(rect, 1, 1, glm::ivec2(half.width, half.height));
+            if (compute_) {
+                ctx.dispatch_fullscreen(*prog_, half_rect);
+            } else {
+                ctx.bind_framebuffer({"half"});
+                prog_->use();
+                pathlet::lines::ScopedScissor clip(half_rect);
                 ctx.draw_fullscreen();  // background texels return 1 at once
             }
             draw_covered(ctx, *upsample_, rect);
@@ -105,12 +110,17 @@ public:
             draw_covered(ctx, *prog_, rect);
         }
         ctx.stat("samples per pixel", samples_);
+        ctx.stat(pathlet::kComputeStat, compute_ ? 1.0 : 0.0);
     }
 
 private:
     // Into `ao` inside `rect`: with the G-buffer depth only where there is geometry (the
     // background stays 1, as cleared), else every pixel.
-    static void draw_covered(pathlet::PassContext& ctx, pathlet::ShaderProgram& prog, glm::ivec4 rect) {
+    void draw_covered(pathlet::PassContext& ctx, pathlet::ShaderProgram& prog, glm::ivec4 rect) const {
+        if (compute_) {
+            ctx.dispatch_fullscreen(prog, rect, ctx.connected("depth") ? "depth" : "");
+            return;
+        }
         pathlet::lines::ScopedScissor clip(rect);
         if (ctx.connected("depth")) {
             ctx.bind_framebuffer({"ao"}, "depth");
@@ -124,7 +134,7 @@ private:
 
     pathlet::ShaderProgram* prog_ = nullptr;
     pathlet::ShaderProgram* upsample_ = nullptr;
-    bool half_ = false;
+    bool half_ = false, compute_ = false;
     double samples_ = 0;
 };
 
@@ -167,6 +177,7 @@ pathlet::PassTypeInfo lineao_type() {
         .output_texture("ao", "r16f", "ambient occlusion, 1 = unoccluded, background 1")
         .internal_texture("half", "r16f", "resolution=half: the term for the first pixel of each 2x2 block",
                           {.scale = 0.5f})
+        .compute_version()
         .make<LineAO>();
 }
 

@@ -4,12 +4,24 @@
 // need no recompile; the sample kernel is generated in the loop (level_samples). Uniforms named
 // after a parameter (u_r0, u_strength, ...) and the samplers named after a pin are set by the
 // SDK from the pass's declaration.
+#include "fullscreen_pass.glsl"
 #include "lineao_common.glsl"
 #include "pow_whole.glsl"
 
 #define MAX_LEVELS 8
 
+#ifdef FULLSCREEN_COMPUTE
+#ifdef LINEAO_HALF  // resolution = half: the term goes to the internal texture `half`
+layout(r16f) writeonly uniform image2D u_half;
+void write_ao(ivec2 p, float ao) { imageStore(u_half, p, vec4(ao)); }
+#else
+layout(r16f) writeonly uniform image2D u_ao;
+void write_ao(ivec2 p, float ao) { imageStore(u_ao, p, vec4(ao)); }
+#endif
+#else
 layout(location = 0) out float o_ao;
+void write_ao(ivec2 p, float ao) { o_ao = ao; }
+#endif
 uniform sampler2D u_normal_depth;  // level-0 normal (xyz) + linear depth (w)
 uniform sampler2D u_pyramid;       // mip l = level l (only read when u_from_pyramid)
 uniform sampler2D u_zoom;          // px per world unit at the fragment
@@ -81,11 +93,13 @@ void level_samples(const bool pyramid, int l, int lod, ivec2 lod_size, ivec2 siz
 void main() {
     // Everything below is in full-resolution pixels; at half resolution a fragment computes the
     // term of the first pixel of its 2x2 block (lineao_upsample.frag fills in the others).
-    vec2 frag = u_resolution == 1 ? vec2(ivec2(gl_FragCoord.xy) * 2) + 0.5 : gl_FragCoord.xy;
+    ivec2 out_p;
+    if (!fullscreen_pixel(out_p)) return;
+    vec2 frag = vec2(u_resolution == 1 ? out_p * 2 : out_p) + 0.5;
     ivec2 p = ivec2(frag);
     vec4 nd = texelFetch(u_normal_depth, p, 0);
     if (!nd_is_geometry(nd)) {  // background: skipped, unoccluded
-        o_ao = 1.0;
+        write_ao(out_p, 1.0);
         return;
     }
     vec3 n = normalize(nd.xyz);
@@ -98,13 +112,18 @@ void main() {
     float ang = 6.28318530718 * rnd.x;
     mat2 rot = mat2(cos(ang), sin(ang), -sin(ang), cos(ang));
 
+    ivec2 pyramid_size = textureSize(u_pyramid, 0);
     float line_ao = 0.0;
     for (int l = 0; l < u_radii; ++l) {
         float radius = u_r0 + u_growth[l] * width_px;
         // Where level l's samples come from, decided once per level (not per sample).
         bool from_pyramid = u_from_pyramid && l > 0;
         int lod = from_pyramid ? min(l + u_lod_offset, u_max_lod) : 0;
-        ivec2 lod_size = from_pyramid ? textureSize(u_pyramid, lod) : size;
+        // GL's mip size rule rather than textureSize(u_pyramid, lod): llvmpipe answers a size query
+        // for the whole SIMD bundle with one lane's lod, and a lane that already returned
+        // (background) made it level 0's size, so the clamp below let fetches fall off odd-sized
+        // levels (found by the compute port's test at 333x217).
+        ivec2 lod_size = from_pyramid ? max(pyramid_size >> lod, ivec2(1)) : size;
         float sum;
         int used;
         if (from_pyramid)
@@ -113,5 +132,5 @@ void main() {
             level_samples(false, l, lod, lod_size, size, frag, n, d, rot, rnd.y, radius, sum, used);
         line_ao += used > 0 ? sum / float(used) : 0.0;  // empty level: 0, never NaN
     }
-    o_ao = clamp(1.0 - u_strength / float(u_radii) * line_ao, 0.0, 1.0);
+    write_ao(out_p, clamp(1.0 - u_strength / float(u_radii) * line_ao, 0.0, 1.0));
 }

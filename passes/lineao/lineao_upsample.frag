@@ -4,15 +4,23 @@
 // by how close the depth and normal of each block's pixel are to its own, so AO does not bleed
 // across line edges. (A sharper normal weight, cos^16, measured worse on the phantom: 2.94 vs
 // 2.76/255 in the final image.) Runs only on geometry (the G-buffer depth test); the background stays 1.
+#include "fullscreen_pass.glsl"
 #include "lineao_common.glsl"
 
+#ifdef FULLSCREEN_COMPUTE
+layout(r16f) writeonly uniform image2D u_ao;
+void write_ao(ivec2 p, float ao) { imageStore(u_ao, p, vec4(ao)); }
+#else
 layout(location = 0) out float o_ao;
+void write_ao(ivec2 p, float ao) { o_ao = ao; }
+#endif
 uniform sampler2D u_normal_depth;  // full-res normal + linear depth
 uniform sampler2D u_half;          // half-res AO (lineao's internal texture): texel h holds full-res pixel 2h
 uniform float u_inv_sigma_d;                   // 1 / depth tolerance (normalised linear depth)
 
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 p;
+    if (!fullscreen_pixel(p)) return;
     vec4 nd = texelFetch(u_normal_depth, p, 0);
     ivec2 hs = textureSize(u_half, 0);
     ivec2 full = textureSize(u_normal_depth, 0);
@@ -33,5 +41,5 @@ void main() {
             sum += w * texelFetch(u_half, h, 0).r;
             wsum += w;
         }
-    o_ao = wsum > 1e-6 ? sum / wsum : texelFetch(u_half, clamp(p / 2, ivec2(0), hs - 1), 0).r;
+    write_ao(p, wsum > 1e-6 ? sum / wsum : texelFetch(u_half, clamp(p / 2, ivec2(0), hs - 1), 0).r);
 }

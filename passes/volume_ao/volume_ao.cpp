@@ -16,7 +16,8 @@ public:
     void setup(pathlet::PassContext& ctx) override {
         std::vector<std::string> defines = lines::VolumeAo::defines(ctx);
         if (ctx.connected("screen_ao")) defines.push_back("SCREEN_AO");
-        prog_ = &ctx.program({"fullscreen.vert", "volume_ao.frag"}, defines);
+        compute_ = ctx.use_compute();
+        prog_ = &ctx.fullscreen_program("volume_ao.frag", defines);
     }
 
     void execute(pathlet::PassContext& ctx) override {
@@ -24,6 +25,12 @@ public:
         vao_.bind(ctx, *prog_);
         const float one = 1.0f;
         glClearTexImage(ctx.texture("ao").id, 0, GL_RED, GL_FLOAT, &one);  // background stays 1
+        ctx.stat("samples per pixel", double(ctx.params().i("directions") * ctx.params().i("steps")));
+        ctx.stat(pathlet::kComputeStat, compute_ ? 1.0 : 0.0);
+        if (compute_) {
+            ctx.dispatch_fullscreen(*prog_, lines::screen_rect(ctx, 2), ctx.connected("depth") ? "depth" : "");
+            return;
+        }
         lines::ScopedScissor clip(lines::screen_rect(ctx, 2));
         if (ctx.connected("depth")) {
             ctx.bind_framebuffer({"ao"}, "depth");
@@ -32,12 +39,12 @@ public:
             ctx.bind_framebuffer({"ao"});
             ctx.draw_fullscreen();
         }
-        ctx.stat("samples per pixel", double(ctx.params().i("directions") * ctx.params().i("steps")));
     }
 
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::VolumeAo vao_;
+    bool compute_ = false;
 };
 
 pathlet::PassTypeInfo volume_ao_type() {
@@ -55,7 +62,8 @@ pathlet::PassTypeInfo volume_ao_type() {
                        {.optional = true})
         .input_texture("screen_ao", "r16f", "a screen-space AO term (lineao's) to multiply in: the hybrid",
                        {.optional = true})
-        .output_texture("ao", "r16f", "the AO term, 1 on background");
+        .output_texture("ao", "r16f", "the AO term, 1 on background")
+        .compute_version();
     return b.make<VolumeAoPass>();
 }
 

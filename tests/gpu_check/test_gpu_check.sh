@@ -26,4 +26,8 @@ graphs=$(ls "$SRC"/graphs/*.json | wc -l)
 grep -q 'wall fps' "$R/bench_window.txt" || fail "the bench summary has no wall fps column"
 grep -Eq '^loop --no-images: [0-9]+ frames, .* [0-9.]+ fps$' "$R/summary.txt" || fail "no render-loop frame rate"
 grep -q '^renderer: llvmpipe' "$R/summary.txt" || fail "the summary does not name the renderer"
+for g in variant1_lineao variant1_vao variant1_stable; do
+  grep -q ' \* ' "$R/compute_$g.txt" || fail "compute_$g.txt has no fragment/compute row"
+done
+grep -q '^fragment vs compute picture: max levels 0 ' "$R/summary.txt" || fail "the ports' pictures differ (compute.txt)"
 echo "gpu-check --quick: every part present; $graphs renders match the reference"

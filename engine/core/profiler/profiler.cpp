@@ -1,6 +1,8 @@
 // Recording side of the profiler: frame/pass boundaries and the two GPU timing backends.
 #include "profiler/profiler.hpp"
 
+#include <pathlet/pass.hpp>
+
 #include <chrono>
 #include <stdexcept>
 
@@ -8,13 +10,8 @@ namespace pathlet {
 
 namespace {
 
-const char* const kSoftwareRenderers[] = {"llvmpipe", "softpipe", "SwiftShader"};
-
-std::string software_renderer_name(const std::string& renderer) {
-    for (const char* name : kSoftwareRenderers)
-        if (renderer.find(name) != std::string::npos) return name;
-    return "";
-}
+// One rule for what is a software rasterizer: the SDK's, which impl=auto follows too.
+std::string software_renderer_name(const std::string& renderer) { return software_rasterizer(renderer); }
 
 double steady_ms() {
     using namespace std::chrono;

@@ -246,6 +246,12 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     // What a minimal GL 4.5 driver would refuse fails here on any driver (pathlet/gl_limits.hpp).
     check_program_limits(prog.id_, prog.files_);
     prog.reflect();
+    bool compute = false;
+    for (const auto& entry : names) {
+        const size_t colon = entry.find(':');
+        compute = compute || stage_of(colon == std::string::npos ? entry : "stage." + entry.substr(0, colon)) == GL_COMPUTE_SHADER;
+    }
+    if (compute) glGetProgramiv(prog.id_, GL_COMPUTE_WORK_GROUP_SIZE, &prog.local_size_.x);
     return prog;
 }
 
@@ -334,7 +340,8 @@ void ShaderProgram::bind_image(const std::string& name, GLuint texture, GLenum f
 }
 
 ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept
-    : id_(o.id_), uniforms_(std::move(o.uniforms_)), blocks_(std::move(o.blocks_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)) {
+    : id_(o.id_), uniforms_(std::move(o.uniforms_)), blocks_(std::move(o.blocks_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)),
+      local_size_(o.local_size_) {
     o.id_ = 0;
 }
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
@@ -346,6 +353,7 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
         locs_ = std::move(o.locs_);
         declared_ = std::move(o.declared_);
         files_ = std::move(o.files_);
+        local_size_ = o.local_size_;
         o.id_ = 0;
     }
     return *this;
@@ -380,6 +388,7 @@ void ShaderProgram::set(const std::string& n, glm::vec4 v) const {
     glProgramUniform4f(id_, loc(n), v.x, v.y, v.z, v.w);
 }
 void ShaderProgram::set(const std::string& n, glm::ivec2 v) const { glProgramUniform2i(id_, loc(n), v.x, v.y); }
+void ShaderProgram::set(const std::string& n, glm::ivec4 v) const { glProgramUniform4i(id_, loc(n), v.x, v.y, v.z, v.w); }
 void ShaderProgram::set(const std::string& n, const glm::mat4& v) const {
     glProgramUniformMatrix4fv(id_, loc(n), 1, GL_FALSE, glm::value_ptr(v));
 }

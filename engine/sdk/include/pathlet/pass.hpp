@@ -163,6 +163,11 @@ public:
     PassTypeBuilder& output_buffer(const std::string& name, const std::string& doc, BufferSize size,
                                    PinOptions o = {});
 
+    // The pass has a fragment and a compute version of its fullscreen work: declares the
+    // parameter `impl` (auto | fragment | compute; auto follows auto_impl() below). The pass
+    // compiles with ctx.fullscreen_program() and branches on ctx.use_compute().
+    PassTypeBuilder& compute_version();
+
     // The pass does work outside the graph (writes files): the compiler never culls it.
     PassTypeBuilder& side_effect() {
         info_.side_effect = true;
@@ -180,6 +185,21 @@ private:
 };
 
 // ---- run time -------------------------------------------------------------------------
+
+// ---- fullscreen passes: fragment or compute ---------------------------------------------
+
+// Which version of a fullscreen pass runs (the parameter `impl` of a pass with compute_version()).
+enum class FullscreenImpl { fragment, compute };
+// The software rasterizer a GL_RENDERER string names ("llvmpipe", "softpipe", "swrast",
+// "SwiftShader", ...), or "" for a hardware GPU.
+std::string software_rasterizer(const std::string& gl_renderer);
+// What `impl=auto` runs: compute on a hardware GPU (a datacenter GPU runs fragment work on a
+// small part of the chip: a 29-tap pass took 1.5 ms as fragment, 0.09 ms as compute on an
+// H200), fragment on a software rasterizer (llvmpipe's compute was 3.5-4.6x slower).
+FullscreenImpl auto_impl(const std::string& gl_renderer);
+// The stat a pass with both versions reports every frame: 1 when compute ran, 0 for fragment
+// (`bench` and the profiler's table print it).
+inline constexpr const char* kComputeStat = "compute";
 
 // Resolved parameter values of one pass instance (defaults + graph + variables + --set).
 class Params {
@@ -296,6 +316,23 @@ public:
     const Camera& camera() const;
     // Statistics reported with the timing table (e.g. "segments drawn").
     void stat(const std::string& name, double value);
+    // Fullscreen passes with a compute version (PassTypeBuilder::compute_version()):
+    // The parameter `impl` resolved on this context's renderer (auto_impl for `auto`).
+    bool use_compute() const;
+    // The pass's fullscreen shader `file` (written once for both, see shaders/fullscreen_pass.glsl):
+    // with use_compute() compiled as a compute shader with FULLSCREEN_COMPUTE defined, else as
+    // the fragment stage behind fullscreen.vert. Bound by declaration like program(): outputs
+    // the compute version writes are images u_<pin> (level 0; other levels: bind_image).
+    ShaderProgram& fullscreen_program(const std::string& file, std::vector<std::string> defines = {});
+    // Runs a compute program over every pixel of `rect` ({x0, y0, x1, y1}, end exclusive, as
+    // lines::screen_rect gives; nothing when empty): work groups of the program's local size,
+    // fullscreen_pixel() in the shader skips the overhang. With `depth_pin` (a G-buffer depth)
+    // only pixels on geometry (depth < 1), as draw_fullscreen_on_geometry does. Ends with the
+    // memory barrier every later reader needs (texture fetch, framebuffer, copies, read-back).
+    void dispatch_fullscreen(ShaderProgram& prog, glm::ivec4 rect, const std::string& depth_pin = "");
+    // The same over the whole output.
+    void dispatch_fullscreen(ShaderProgram& prog, const std::string& depth_pin = "");
+
     // A full-screen triangle: bind a program first; vertex shader from shaders/fullscreen.vert.
     void draw_fullscreen();
     // The same, but only where the bound framebuffer's depth attachment (a G-buffer depth)

@@ -39,6 +39,8 @@ public:
 
     GLuint id() const { return id_; }
     void use() const { glUseProgram(id_); }
+    // A compute program's work group size (its layout(local_size_*)); 0 for any other program.
+    glm::ivec3 local_size() const { return local_size_; }
 
     // What the linked program has, read back from GL (active uniforms outside blocks).
     struct Uniform {
@@ -81,6 +83,7 @@ public:
     void set(const std::string& n, glm::vec3 v) const;
     void set(const std::string& n, glm::vec4 v) const;
     void set(const std::string& n, glm::ivec2 v) const;
+    void set(const std::string& n, glm::ivec4 v) const;
     void set(const std::string& n, const glm::mat4& v) const;
 
 private:
@@ -92,6 +95,7 @@ private:
     mutable std::map<std::string, GLint> locs_;
     std::set<std::string> declared_;  // uniform names found in the expanded sources
     std::string files_;               // "a.vert, b.geom, c.frag", for messages
+    glm::ivec3 local_size_{0};
 };
 
 // A pass parameter used as an exponent, as a #define for shaders/pow_whole.glsl: "NAME n" when the
