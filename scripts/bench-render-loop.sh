@@ -54,6 +54,7 @@ run() {
   python3 -c "print($(now) - $t0)" > "$work/$name.wall"
 }
 
+load0=$(cut -d' ' -f1 /proc/loadavg)
 results="$work/results.txt"
 : > "$results"
 renderer=""
@@ -74,7 +75,8 @@ for ((r = 1; r <= rounds; ++r)); do
   done
 done
 
-echo "render loop, $graph, $size, --time $time, $rounds rounds (renderer: ${renderer:-unknown})"
+echo "render loop, $graph, $size, --time $time, $rounds rounds (renderer: ${renderer:-unknown};" \
+  "load average $load0 at the start, $(cut -d' ' -f1 /proc/loadavg) at the end, $(nproc) cores)"
 python3 - "$results" "${bins[@]}" <<'EOF'
 import sys
 rows = [l.split() for l in open(sys.argv[1])]
