@@ -14,6 +14,8 @@
 # and prints per binary the ranges over the rounds of
 #   loop  = no-images wall / (startup + frames)      target <= 1.10
 #   video = video wall / no-images wall              target <= 1.25
+# and, for a binary that reports it, the video run's render-thread time on the output side
+# (read-back, waiting for a full ring or for the encoders, the final drain) per round.
 # Data: the built-in study phantom (cached in ~/.cache/pathlet after its first use).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -68,10 +70,11 @@ for ((r = 1; r <= rounds; ++r)); do
     frames=$(frames_s "$work/n$i.trace.json")
     nwall=$(cat "$work/n$i.wall") vwall=$(cat "$work/v$i.wall")
     pngs=$(find "$work/v$i.out" -name '*.png' | wc -l)
-    echo "$i $startup $frames $nwall $vwall $pngs" >> "$results"
+    out=$(python3 -c "import json;print(json.load(open('$work/v$i.json'))['meta'].get('output_s', -1))")
+    echo "$i $startup $frames $nwall $vwall $pngs $out" >> "$results"
     [[ -n $renderer ]] || renderer=$(python3 -c "import json;print(json.load(open('$work/n$i.json'))['meta']['renderer'])" 2>/dev/null || true)
-    printf 'round %d  %-28s startup %5.2f s  frames %6.2f s  no-images %6.2f s  video %6.2f s  (%d PNGs)\n' \
-      "$r" "$b" "$startup" "$frames" "$nwall" "$vwall" "$pngs" >&2
+    printf 'round %d  %-28s startup %5.2f s  frames %6.2f s  no-images %6.2f s  video %6.2f s  (%d PNGs, output side %s s)\n' \
+      "$r" "$b" "$startup" "$frames" "$nwall" "$vwall" "$pngs" "$out" >&2
   done
 done
 
@@ -86,8 +89,8 @@ for i, b in enumerate(sys.argv[2:]):
     def rng(vals, f="{:.2f}"):
         lo, hi = min(vals), max(vals)
         return f.format(lo) if abs(hi - lo) < 5e-3 else f"{f.format(lo)}-{f.format(hi)}"
-    loop = [n / (s + f) for s, f, n, v, p in rs]
-    vid = [v / n for s, f, n, v, p in rs]
+    loop = [n / (s + f) for s, f, n, v, p, o in rs]
+    vid = [v / n for s, f, n, v, p, o in rs]
     print(f"{b:<34} {rng([r[0] for r in rs]):>11} {rng([r[1] for r in rs]):>13} {rng([r[2] for r in rs]):>13} "
           f"{rng([r[3] for r in rs]):>13} {rng(loop):>11} {rng(vid):>13}")
 print("targets: loop <= 1.10, video/no-img <= 1.25")

@@ -8,6 +8,7 @@
 #include "image_io.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -92,6 +93,12 @@ std::string resolve_graph_path(const std::string& arg) {
     }
     return arg;  // the parser reports "file not found" with the name as given
 }
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
 
 RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
@@ -199,17 +206,22 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
             }
             captures.push_back(std::move(c));
         }
+        const auto t0 = std::chrono::steady_clock::now();
         if (!captures.empty()) {
             if (!output) output.emplace(out_opt);
             output->capture(captures);
         }
         if (output) output->poll();  // what the GPU has copied goes to the writers, no waiting
+        res.output_s += seconds_since(t0);
         if (on_frame) on_frame(exec, i);
         ++done;
         if (opt.on_progress) opt.on_progress(done, count);
         if (opt.on_frames) opt.on_frames(done, written(), count);
     }
+    const auto t0 = std::chrono::steady_clock::now();
     if (output) output->finish();
+    res.output_drain_s = seconds_since(t0);
+    res.output_s += res.output_drain_s;
     if (opt.on_frames) opt.on_frames(done, written(), count);
     res.frames = done;
     res.frames_read_back = output ? output->frames_captured() : 0;

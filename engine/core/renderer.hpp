@@ -73,6 +73,9 @@ struct RenderResult {
     size_t frames = 0;               // rendered (fewer than asked when interrupted)
     bool interrupted = false;        // RenderOptions::stop ended it
     size_t frames_read_back = 0;     // frames whose pixels a file or on_image used (none: no read-back)
+    // The render thread's time on the output side: queuing copies, waiting for a full ring or
+    // for the writers (back-pressure), and the final wait until every file is written.
+    double output_s = 0, output_drain_s = 0;
     std::vector<std::string> files;  // written images/videos
     Profiler profiler;
     CompiledGraph compiled;

@@ -157,6 +157,9 @@ int run(const std::vector<std::string>& argv) {
             r.files.push_back(video_path);
         }
         if (progress) progress->finish(std::to_string(r.frames) + " frames" + (r.frames_read_back ? " rendered and written" : ""));
+        if (r.frames_read_back && !opt.quiet)  // where the encoders are the bottleneck, this says so
+            std::fprintf(stderr, "output: %.1f s of the frame loop went to read-back and waiting for the encoders (%.1f s after the last frame)\n",
+                         r.output_s, r.output_drain_s);
         std::string title = graph_display_name(parse_graph_file(opt.graph_path)) + " — " +
                             std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y) + ", " +
                             std::to_string(r.frames) + " frames, " + std::to_string(scene.lines.line_count()) +
@@ -166,7 +169,8 @@ int run(const std::vector<std::string>& argv) {
             std::fprintf(stderr, "wrote %zu file(s), e.g. %s\n", r.files.size(), r.files.back().c_str());
         if (!report.empty()) {
             json meta = {{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()}, {"size", {opt.size.x, opt.size.y}},
-                         {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables}};
+                         {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables},
+                         {"output_s", r.output_s}, {"output_drain_s", r.output_drain_s}};
             write_reports(r, report, meta);
         }
         return 0;
