@@ -14,8 +14,9 @@
 # and prints per binary the ranges over the rounds of
 #   loop  = no-images wall / (startup + frames)      target <= 1.10
 #   video = video wall / no-images wall              target <= 1.25
-# and, for a binary that reports it, the video run's render-thread time on the output side
-# (read-back, waiting for a full ring or for the encoders, the final drain) per round.
+# and for the video run its frames' own time (encoders competing for the cores slow them) and,
+# where the binary reports it, the render thread's time on the output side (read-back,
+# waiting for a full ring or for the encoders, the final drain).
 # Data: the built-in study phantom (cached in ~/.cache/pathlet after its first use).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,7 +28,7 @@ while (($#)); do
     --size) size=$2; shift 2 ;;
     --time) time=$2; shift 2 ;;
     --graph) graph=$2; shift 2 ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     *) bins+=("$1"); shift ;;
   esac
 done
@@ -70,11 +71,12 @@ for ((r = 1; r <= rounds; ++r)); do
     frames=$(frames_s "$work/n$i.trace.json")
     nwall=$(cat "$work/n$i.wall") vwall=$(cat "$work/v$i.wall")
     pngs=$(find "$work/v$i.out" -name '*.png' | wc -l)
-    out=$(python3 -c "import json;print(json.load(open('$work/v$i.json'))['meta'].get('output_s', -1))")
-    echo "$i $startup $frames $nwall $vwall $pngs $out" >> "$results"
+    out=$(python3 -c "import json;print(round(json.load(open('$work/v$i.json'))['meta'].get('output_s', -1), 2))")
+    vframes=$(frames_s "$work/v$i.trace.json")
+    echo "$i $startup $frames $nwall $vwall $pngs $out $vframes" >> "$results"
     [[ -n $renderer ]] || renderer=$(python3 -c "import json;print(json.load(open('$work/n$i.json'))['meta']['renderer'])" 2>/dev/null || true)
-    printf 'round %d  %-28s startup %5.2f s  frames %6.2f s  no-images %6.2f s  video %6.2f s  (%d PNGs, output side %s s)\n' \
-      "$r" "$b" "$startup" "$frames" "$nwall" "$vwall" "$pngs" "$out" >&2
+    printf 'round %d  %-28s startup %5.2f s  frames %6.2f s  no-images %6.2f s  video %6.2f s (its frames %6.2f s, %d PNGs, output side %s s)\n' \
+      "$r" "$b" "$startup" "$frames" "$nwall" "$vwall" "$vframes" "$pngs" "$out" >&2
   done
 done
 
@@ -83,15 +85,18 @@ echo "render loop, $graph, $size, --time $time, $rounds rounds (renderer: ${rend
 python3 - "$results" "${bins[@]}" <<'EOF'
 import sys
 rows = [l.split() for l in open(sys.argv[1])]
-print(f"{'binary':<34} {'startup s':>11} {'frames s':>13} {'no-images s':>13} {'video s':>13} {'loop':>11} {'video/no-img':>13}")
+print(f"{'binary':<34} {'startup s':>11} {'frames s':>13} {'no-images s':>13} {'video s':>13} {'loop':>11} {'video/no-img':>13}"
+      f" {'video: frames s':>16} {'output side s':>14}")
 for i, b in enumerate(sys.argv[2:]):
     rs = [[float(x) for x in r[1:]] for r in rows if r[0] == str(i)]
     def rng(vals, f="{:.2f}"):
         lo, hi = min(vals), max(vals)
         return f.format(lo) if abs(hi - lo) < 5e-3 else f"{f.format(lo)}-{f.format(hi)}"
-    loop = [n / (s + f) for s, f, n, v, p, o in rs]
-    vid = [v / n for s, f, n, v, p, o in rs]
+    loop = [n / (s + f) for s, f, n, v, p, o, vf in rs]
+    vid = [v / n for s, f, n, v, p, o, vf in rs]
+    out = [r[5] for r in rs]
     print(f"{b:<34} {rng([r[0] for r in rs]):>11} {rng([r[1] for r in rs]):>13} {rng([r[2] for r in rs]):>13} "
-          f"{rng([r[3] for r in rs]):>13} {rng(loop):>11} {rng(vid):>13}")
+          f"{rng([r[3] for r in rs]):>13} {rng(loop):>11} {rng(vid):>13} {rng([r[6] for r in rs]):>16} "
+          f"{rng(out) if min(out) >= 0 else '-':>14}")
 print("targets: loop <= 1.10, video/no-img <= 1.25")
 EOF
