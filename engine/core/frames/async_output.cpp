@@ -2,14 +2,12 @@
 
 #include "formats.hpp"
 #include "frames/byte_readback.hpp"
+#include "frames/file_complete.hpp"
 #include "util/atomic_file.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -34,29 +32,6 @@ bool is_depth(GLenum f) {
 bool is_filterable(GLenum f) {
     const FormatInfo* fi = find_format(f);
     return fi && !fi->depth && !fi->is_integer;
-}
-
-// A full disk can cut a file short without the encoder noticing: OpenImageIO and libpng do
-// not check the last flush when they close it. So a file is renamed into place only once it is
-// whole: a PNG ends with its IEND chunk, anything else must read back.
-void check_complete(const std::string& written, const std::string& file) {
-    bool whole = false;
-    std::string ext = fs::path(written).extension().string();
-    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    if (ext == ".png") {
-        static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
-        std::ifstream in(written, std::ios::binary | std::ios::ate);
-        unsigned char tail[12] = {};
-        if (in && in.tellg() >= 12 && in.seekg(-12, std::ios::end) && in.read(reinterpret_cast<char*>(tail), 12))
-            whole = std::memcmp(tail, iend, 12) == 0;
-    } else {
-        try {
-            read_image(written);
-            whole = true;
-        } catch (const std::exception&) {
-        }
-    }
-    if (!whole) throw std::runtime_error(file + ": cannot write image: the file came out incomplete (is the disk full?)");
 }
 
 }  // namespace
@@ -182,7 +157,8 @@ void AsyncOutput::submit(RawFrame&& raw, const Capture& c, bool last_of_frame) {
             if (m.compare(0, s->staged.size(), s->staged) == 0) m = s->file + m.substr(s->staged.size());
             throw std::runtime_error(m);
         }
-        check_complete(s->staged, s->file);
+        if (!image_file_complete(s->staged))  // a full disk cuts files short without the encoder noticing
+            throw std::runtime_error(s->file + ": cannot write image: the file came out incomplete (is the disk full?)");
         if (!s->to_image) s->img = {};  // encoded: the pixels are not needed while it waits its turn
     };
     job.commit = [this, s] {
