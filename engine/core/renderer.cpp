@@ -4,6 +4,7 @@
 
 #include "executor.hpp"
 #include "formats.hpp"
+#include "frames/async_output.hpp"
 #include "image_io.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -120,12 +122,18 @@ std::string resolve_graph_path(const std::string& arg) {
     return arg;  // the parser reports "file not found" with the name as given
 }
 
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
 // Warm-up by time (RenderOptions::warmup_seconds): blocks of frames of a quarter second each,
 // finished on the GPU before the block's rate is taken, until `seconds` have passed and two
 // blocks in a row agree within 5 %. A GPU's clock governor needs seconds of load to settle.
 static void warm_up_by_time(double seconds, Profiler& profiler, const std::function<void()>& frame) {
     using clock = std::chrono::steady_clock;
-    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    const auto since = seconds_since;
     const auto start = clock::now();
     const double cap = std::max(5.0, 4.0 * seconds), block = 0.25;
     double previous = 0;
@@ -193,7 +201,9 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
     size_t first = 0, count = 0;
     while (first < times.size() && !mine(first)) ++first;
     for (size_t i = 0; i < times.size(); ++i) count += mine(i);
-    if (count == 0) {  // more shards than frames: nothing to do
+    auto stopped = [&] { return opt.stop && opt.stop(); };
+    if (count == 0 || stopped()) {  // more shards than frames, or stopped while setting up
+        res.interrupted = count > 0;
         res.profiler.release_gl();
         return res;
     }
@@ -202,20 +212,40 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
         warm_up_by_time(opt.warmup_seconds, res.profiler,
                         [&] { exec.run_frame({index++, times[first], camera_at(times[first])}); });
 
+    // Made on the first frame something uses: renders nobody reads (bench, --no-images) have none.
+    std::optional<AsyncOutput> output;
+    AsyncOutput::Options out_opt;
+    out_opt.ssaa = ssaa;
+    out_opt.ring_depth = size_t(std::max(1, opt.readback_frames));
+    out_opt.threads = opt.writer_threads;
+    out_opt.max_queued = size_t(std::max(0, opt.max_queued_images));
+    out_opt.on_image = opt.on_image;
+    out_opt.quiet = opt.quiet;
+    auto written = [&] { return output ? output->frames_written() : size_t(0); };
+
     size_t done = 0;
     std::set<std::string> cleaned;  // output folders cleared of stale temps
     for (size_t i = 0; i < times.size(); ++i) {
         if (!mine(i)) continue;
+        if (stopped()) {
+            res.interrupted = true;
+            break;
+        }
         double t = times[i];
         exec.run_frame({index++, t, camera_at(t)});
+        std::vector<AsyncOutput::Capture> captures;
         for (const auto& out : cg.outputs) {
-            if (out.capture.empty() && !opt.on_image) continue;
+            const bool to_file = opt.write_images && !out.capture.empty();
+            const bool to_image = opt.on_image && &out == &cg.outputs.front();
+            if (!to_file && !to_image) continue;  // nobody uses its pixels: not read back
             int r = cg.find_resource(out.resource);
             const auto& rd = cg.resources[size_t(r)];
             if (rd.kind != PinKind::Texture) continue;
-            Texture tex = exec.texture(out.resource);
-            Image img = box_downsample(read_texture(tex.id, tex.width, tex.height, 0, 4), ssaa);
-            if (opt.write_images && !out.capture.empty()) {
+            AsyncOutput::Capture c;
+            c.what = "output '" + out.resource + "'";
+            c.tex = exec.texture(out.resource);
+            c.to_image = to_image;
+            if (to_file) {
                 std::string file = expand_pattern(out.capture,
                                                   {{"out", opt.out_dir}, {"graph", gname}, {"output", out.resource},
                                                    {"size", std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y)}},
@@ -230,15 +260,30 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                 // Once per folder: temps of a render that was killed are not left lying around.
                 if (cleaned.insert(fs::path(file).parent_path().string()).second)
                     remove_stale_temps(fs::path(file).parent_path().string());
-                write_image(file, img);
+                c.file = file;
                 res.files.push_back(file);
             }
-            if (opt.on_image && &out == &cg.outputs.front()) opt.on_image(img);
+            captures.push_back(std::move(c));
         }
+        const auto t0 = std::chrono::steady_clock::now();
+        if (!captures.empty()) {
+            if (!output) output.emplace(out_opt);
+            output->capture(captures);
+        }
+        if (output) output->poll();  // what the GPU has copied goes to the writers, no waiting
+        res.output_s += seconds_since(t0);
         if (on_frame) on_frame(exec, i);
-        if (opt.on_progress) opt.on_progress(++done, count);
+        ++done;
+        if (opt.on_progress) opt.on_progress(done, count);
+        if (opt.on_frames) opt.on_frames(done, written(), count);
     }
-    res.frames = count;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (output) output->finish();
+    res.output_drain_s = seconds_since(t0);
+    res.output_s += res.output_drain_s;
+    if (opt.on_frames) opt.on_frames(done, written(), count);
+    res.frames = done;
+    res.frames_read_back = output ? output->frames_captured() : 0;
     res.profiler.release_gl();  // collects frames still in flight, then frees the queries
     return res;
 }

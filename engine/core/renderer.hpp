@@ -60,8 +60,20 @@ struct RenderOptions {
     bool quiet = false;
     // What the caller sees while it runs (the render command's progress bar and video encoder):
     // frames done of the total, and the first output of every written frame at `size`.
+    // on_image runs on a writer thread, in frame order, one call at a time.
     std::function<void(size_t done, size_t total)> on_progress;
     std::function<void(const Image& first_output)> on_image;
+    // Frames rendered and frames written (their files renamed into place and on_image done) of
+    // the total, on the render thread after every frame and once when everything is written.
+    std::function<void(size_t rendered, size_t written, size_t total)> on_frames;
+    // Polled before every frame: true ends the render early (RenderResult::interrupted); the
+    // frames rendered until then are still written, and nothing half-written stays.
+    std::function<bool()> stop;
+    // The output side (frames/async_output.hpp): only what a file or on_image uses is read
+    // back, through pixel-pack buffers with `readback_frames` frames in flight, and encoded on
+    // `writer_threads` threads (0: min(4, cores)) with at most `max_queued_images` images
+    // waiting (0: threads + 2; the render thread waits beyond that).
+    int readback_frames = 3, writer_threads = 0, max_queued_images = 0;
     // Frame i is rendered when i % shard_count == shard_index (render --shard I/N); names stay
     // those of the whole sequence, so the shards' files together are the unsharded output.
     int shard_index = 0, shard_count = 1;
@@ -71,7 +83,12 @@ struct RenderOptions {
 void check_render_limits(const RenderOptions& opt);
 
 struct RenderResult {
-    size_t frames = 0;
+    size_t frames = 0;               // rendered (fewer than asked when interrupted)
+    bool interrupted = false;        // RenderOptions::stop ended it
+    size_t frames_read_back = 0;     // frames whose pixels a file or on_image used (none: no read-back)
+    // The render thread's time on the output side: queuing copies, waiting for a full ring or
+    // for the writers (back-pressure), and the final wait until every file is written.
+    double output_s = 0, output_drain_s = 0;
     std::vector<std::string> files;  // written images/videos
     Profiler profiler;
     CompiledGraph compiled;

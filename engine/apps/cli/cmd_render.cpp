@@ -9,6 +9,7 @@
 #include "util/output_check.hpp"
 #include "video_writer.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -26,6 +27,38 @@ void write_reports(const RenderResult& r, const std::string& prefix, const json&
     std::fprintf(stderr, "timings: %s.csv, %s.json, %s.trace.json (open the trace in https://ui.perfetto.dev)\n",
                  prefix.c_str(), prefix.c_str(), prefix.c_str());
 }
+
+// SIGINT/SIGTERM while frames render: no new frame starts, the frames rendered so far are
+// written, the video is abandoned, nothing half-written stays. A second signal ends the
+// program at once (SA_RESETHAND); the next render in that folder removes what it left.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+
+class StopOnSignals {
+public:
+    StopOnSignals() {
+        g_stop_signal = 0;
+        struct sigaction sa = {};
+        sa.sa_handler = on_stop_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESETHAND | SA_RESTART;  // writers' pipe and file writes carry on
+        sigaction(SIGINT, &sa, &old_int_);
+        sigaction(SIGTERM, &sa, &old_term_);
+        // Started with a signal ignored (a background job of a script, nohup): it stays ignored.
+        if (old_int_.sa_handler == SIG_IGN) sigaction(SIGINT, &old_int_, nullptr);
+        if (old_term_.sa_handler == SIG_IGN) sigaction(SIGTERM, &old_term_, nullptr);
+    }
+    ~StopOnSignals() {
+        sigaction(SIGINT, &old_int_, nullptr);
+        sigaction(SIGTERM, &old_term_, nullptr);
+    }
+    StopOnSignals(const StopOnSignals&) = delete;
+    StopOnSignals& operator=(const StopOnSignals&) = delete;
+    int signal() const { return g_stop_signal; }
+
+private:
+    struct sigaction old_int_ = {}, old_term_ = {};
+};
 
 int run(const std::vector<std::string>& argv) {
     Args a("render",
@@ -99,19 +132,35 @@ int run(const std::vector<std::string>& argv) {
         if (!video_path.empty()) {
             ensure_parent_dir(video_path);
             video = std::make_unique<VideoWriter>(video_path, opt.size.x, opt.size.y, fps);
-            opt.on_image = [&](const Image& img) { video->add_frame(img); };
+            opt.on_image = [&](const Image& img) { video->add_frame(img); };  // a writer thread, in order
         }
         std::unique_ptr<Progress> progress;
-        opt.on_progress = [&](size_t done, size_t total) {
+        opt.on_frames = [&](size_t rendered, size_t written, size_t total) {
             if (!progress) progress = std::make_unique<Progress>("frames", total, opt.quiet);
-            progress->update(done);
+            // Rendered frames lead; written ones follow as the encoders catch up.
+            const bool writes = opt.write_images || video;
+            progress->update(rendered, writes ? std::to_string(written) + " written" : "");
         };
+        StopOnSignals signals;
+        opt.stop = [&] { return signals.signal() != 0; };
         RenderResult r = render(rt, scene, opt);
+        if (const int sig = signals.signal()) {
+            video.reset();  // stops ffmpeg, removes its temp file
+            if (progress) progress->finish(std::to_string(r.frames) + " frames");
+            std::fprintf(stderr, "interrupted (%s): %zu frame(s) rendered and written%s%s\n",
+                         sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal", r.frames,
+                         r.files.empty() ? "" : (", e.g. " + r.files.back()).c_str(),
+                         video_path.empty() ? "" : "; the video was not written");
+            return 128 + sig;
+        }
         if (video) {
             video->close();
             r.files.push_back(video_path);
         }
-        if (progress) progress->finish(std::to_string(r.frames) + " frames");
+        if (progress) progress->finish(std::to_string(r.frames) + " frames" + (r.frames_read_back ? " rendered and written" : ""));
+        if (r.frames_read_back && !opt.quiet)  // where the encoders are the bottleneck, this says so
+            std::fprintf(stderr, "output: %.1f s of the frame loop went to read-back and waiting for the encoders (%.1f s after the last frame)\n",
+                         r.output_s, r.output_drain_s);
         std::string title = graph_display_name(parse_graph_file(opt.graph_path)) + " — " +
                             std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y) + ", " +
                             std::to_string(r.frames) + " frames, " + std::to_string(scene.lines.line_count()) +
@@ -121,7 +170,8 @@ int run(const std::vector<std::string>& argv) {
             std::fprintf(stderr, "wrote %zu file(s), e.g. %s\n", r.files.size(), r.files.back().c_str());
         if (!report.empty()) {
             json meta = {{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()}, {"size", {opt.size.x, opt.size.y}},
-                         {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables}};
+                         {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables},
+                         {"output_s", r.output_s}, {"output_drain_s", r.output_drain_s}};
             write_reports(r, report, meta);
         }
         return 0;

@@ -1,16 +1,23 @@
 #include "video_writer.hpp"
 
 #include "util/atomic_file.hpp"
-#include "util/text.hpp"
 
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -52,8 +59,6 @@ private:
     bool was_pending_ = false;
 };
 
-using text::shell_quote;
-
 std::string make_stderr_file() {
     std::string templ = (fs::temp_directory_path() / "pathlet-ffmpeg-XXXXXX").string();
     int fd = ::mkstemp(templ.data());
@@ -61,6 +66,20 @@ std::string make_stderr_file() {
     ::close(fd);
     return templ;
 }
+
+// posix_spawn's parts, freed however the start ends.
+struct SpawnParts {
+    posix_spawn_file_actions_t files;
+    posix_spawnattr_t attr;
+    SpawnParts() {
+        posix_spawn_file_actions_init(&files);
+        posix_spawnattr_init(&attr);
+    }
+    ~SpawnParts() {
+        posix_spawn_file_actions_destroy(&files);
+        posix_spawnattr_destroy(&attr);
+    }
+};
 
 }  // namespace
 
@@ -82,35 +101,82 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
     if (ffmpeg.empty()) throw std::runtime_error(path_ + ": cannot write video: ffmpeg not found on PATH");
     if (width <= 0 || height <= 0 || !(fps > 0))
         throw std::runtime_error(path_ + ": cannot write video: bad size or frame rate");
+    // What a killed render left here (ffmpeg finishes a temp file when its input ends).
+    const std::string dir = fs::path(path_).parent_path().string();
+    remove_stale_temps(dir.empty() ? "." : dir);
     tmp_ = temp_path_for(path_);  // keeps the extension, which picks ffmpeg's container
     err_path_ = make_stderr_file();
 
-    std::ostringstream cmd;
-    cmd << shell_quote(ffmpeg) << " -hide_banner -loglevel error -y -f rawvideo -pixel_format rgba"
-        << " -video_size " << width << "x" << height << " -framerate " << fps << " -i -"
-        << " -vf " << shell_quote("pad=ceil(iw/2)*2:ceil(ih/2)*2")  // yuv420p needs even sizes
-        << " -c:v libx264 -pix_fmt yuv420p -crf 18 -movflags +faststart " << shell_quote(tmp_) << " 2>"
-        << shell_quote(err_path_);
-    pipe_ = ::popen(cmd.str().c_str(), "w");
-    if (!pipe_) {
+    std::ostringstream rate;
+    rate << fps;
+    const std::vector<std::string> args = {
+        ffmpeg, "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-f", "rawvideo", "-pixel_format", "rgba",
+        "-video_size", std::to_string(width) + "x" + std::to_string(height), "-framerate", rate.str(), "-i", "pipe:0",
+        "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",  // yuv420p needs even sizes
+        "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18", "-movflags", "+faststart", tmp_};
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+
+    // ffmpeg reads raw frames from a pipe and writes its messages to a file. It runs in a
+    // process group of its own, so a Ctrl-C in the terminal reaches only us: we decide what
+    // becomes of the video (render: abandoned, and the temp file removed).
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) {
         std::error_code ec;
         fs::remove(err_path_, ec);
-        throw std::runtime_error(path_ + ": cannot start ffmpeg");
+        discard_temp(tmp_);
+        throw std::runtime_error(path_ + ": cannot start ffmpeg (pipe)");
+    }
+    SpawnParts sp;
+    posix_spawn_file_actions_adddup2(&sp.files, fds[0], STDIN_FILENO);
+    posix_spawn_file_actions_addopen(&sp.files, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&sp.files, STDERR_FILENO, err_path_.c_str(), O_WRONLY | O_TRUNC, 0600);
+    sigset_t none, defaults;
+    sigemptyset(&none);  // not the caller's mask (SigpipeGuard blocks SIGPIPE while writing)
+    sigemptyset(&defaults);
+    for (int sig : {SIGPIPE, SIGINT, SIGTERM}) sigaddset(&defaults, sig);
+    posix_spawnattr_setsigmask(&sp.attr, &none);
+    posix_spawnattr_setsigdefault(&sp.attr, &defaults);
+    posix_spawnattr_setpgroup(&sp.attr, 0);
+    posix_spawnattr_setflags(&sp.attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    const int rc = ::posix_spawn(&pid_, ffmpeg.c_str(), &sp.files, &sp.attr, argv.data(), environ);
+    ::close(fds[0]);
+    if (rc == 0) pipe_ = ::fdopen(fds[1], "w");
+    if (!pipe_) {
+        ::close(fds[1]);
+        if (rc == 0) {
+            ::kill(pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+        pid_ = -1;
+        std::error_code ec;
+        fs::remove(err_path_, ec);
+        discard_temp(tmp_);
+        throw std::runtime_error(path_ + ": cannot start ffmpeg: " + std::strerror(rc ? rc : errno));
     }
 }
 
 VideoWriter::~VideoWriter() {
+    // Abandoned (an error, or an interrupted render): ffmpeg's work is not wanted, so it is
+    // stopped rather than waited for while it encodes what it has.
+    if (pid_ > 0) ::kill(pid_, SIGKILL);
     wait_ffmpeg();
     std::error_code ec;
-    if (!tmp_.empty()) fs::remove(tmp_, ec);
+    if (!tmp_.empty()) discard_temp(tmp_);
     if (!err_path_.empty()) fs::remove(err_path_, ec);
 }
 
 int VideoWriter::wait_ffmpeg() {
     if (!pipe_) return -1;
-    SigpipeGuard guard;  // pclose flushes what is still buffered
-    int status = ::pclose(pipe_);
+    {
+        SigpipeGuard guard;  // fclose flushes what is still buffered
+        std::fclose(pipe_);
+    }
     pipe_ = nullptr;
+    int status = -1;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {}
+    pid_ = -1;
     return status;
 }
 
@@ -128,7 +194,7 @@ void VideoWriter::fail(const std::string& what, int status) {
     else if (status != -1 && WIFSIGNALED(status)) msg += " (ffmpeg killed by signal " + std::to_string(WTERMSIG(status)) + ")";
     msg += ": " + ffmpeg_stderr();
     std::error_code ec;
-    fs::remove(tmp_, ec);
+    discard_temp(tmp_);
     fs::remove(err_path_, ec);
     tmp_.clear();
     err_path_.clear();

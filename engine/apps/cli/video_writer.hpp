@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <string>
+#include <sys/types.h>
 
 namespace pathlet {
 
@@ -18,7 +19,7 @@ public:
     // Starts ffmpeg (libx264, yuv420p; odd sizes are padded to even). Throws
     // std::runtime_error when ffmpeg is missing or cannot be started.
     VideoWriter(std::string path, int width, int height, double fps);
-    ~VideoWriter();  // without close(): abandons the video and removes the temp file
+    ~VideoWriter();  // without close(): stops ffmpeg, abandons the video, removes the temp file
     VideoWriter(const VideoWriter&) = delete;
     VideoWriter& operator=(const VideoWriter&) = delete;
 
@@ -29,7 +30,7 @@ public:
     size_t frames() const { return frames_; }
 
 private:
-    int wait_ffmpeg();  // pclose status, -1 if there is no pipe
+    int wait_ffmpeg();  // closes the pipe, waits: ffmpeg's wait status, -1 if there is no pipe
     // Cleans up and throws, with ffmpeg's exit status (from wait_ffmpeg) and stderr.
     [[noreturn]] void fail(const std::string& what, int status);
     std::string ffmpeg_stderr() const;
@@ -37,6 +38,7 @@ private:
     std::string path_, tmp_, err_path_;
     int width_, height_;
     FILE* pipe_ = nullptr;
+    pid_t pid_ = -1;
     size_t frames_ = 0;
 };
 

@@ -49,6 +49,30 @@ std::string temp_path_for(const std::string& path) {
     return tmp;
 }
 
+std::string temp_dir_in(const std::string& dir, const std::string& name) {
+    static std::atomic<int> counter{0};
+    const std::string tmp =
+        (fs::path(dir) / ("." + name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".d")).string();
+    std::error_code ec;
+    fs::create_directory(tmp, ec);
+    if (ec) throw std::runtime_error(tmp + ": cannot create a temporary folder: " + ec.message());
+    int fd = ::open(tmp.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error(tmp + ": cannot open the temporary folder");
+    }
+    ::flock(fd, LOCK_EX);  // held while we live: remove_stale_temps of another render leaves it
+    std::lock_guard<std::mutex> lock(g_temps_mutex);
+    g_temps[tmp] = fd;
+    return tmp;
+}
+
+void discard_temp(const std::string& tmp) {
+    std::error_code ec;
+    fs::remove_all(tmp, ec);
+    release_temp(tmp);
+}
+
 void remove_stale_temps(const std::string& dir) {
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
@@ -61,7 +85,7 @@ void remove_stale_temps(const std::string& dir) {
         int fd = ::open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
         if (fd < 0) continue;
         const bool orphan = ::flock(fd, LOCK_EX | LOCK_NB) == 0;  // its writer is gone
-        if (orphan) fs::remove(e.path(), ec);
+        if (orphan) fs::remove_all(e.path(), ec);  // a temp folder goes with its content
         ::close(fd);
     }
 }

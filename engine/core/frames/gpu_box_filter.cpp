@@ -1,0 +1,202 @@
+#include "frames/gpu_box_filter.hpp"
+
+#include "frames/raw_frame.hpp"
+#include "image_io.hpp"
+
+#include <cstring>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace pathlet {
+
+namespace {
+
+constexpr const char* kVertex = R"(#version 450 core
+void main() {  // one triangle over the viewport
+    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+// box_downsample's loops: image rows top-down (GL rows from the block's top), columns left to
+// right, colour weighted by alpha, alpha, the plain colour; `precise` keeps each multiply and
+// add a rounded IEEE operation of its own, in this order.
+constexpr const char* kFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2D u_src;
+uniform int u_factor;
+layout(location = 0) out vec4 o_sums;
+void main() {
+    const ivec2 p = ivec2(gl_FragCoord.xy);
+    const int f = u_factor;
+    precise vec4 sum = vec4(0.0);
+    precise vec3 plain = vec3(0.0);
+    for (int j = 0; j < f; ++j)
+        for (int i = 0; i < f; ++i) {
+            const vec4 s = texelFetch(u_src, ivec2(p.x * f + i, p.y * f + (f - 1 - j)), 0);
+            sum.rgb = sum.rgb + s.a * s.rgb;
+            sum.a = sum.a + s.a;
+            plain = plain + s.rgb;
+        }
+    o_sums = sum.a <= 0.0 ? vec4(plain, sum.a) : sum;
+}
+)";
+
+GLuint compile(GLenum stage, const char* src) {
+    GLuint s = glCreateShader(stage);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetShaderInfoLog(s, sizeof log, nullptr, log);
+        glDeleteShader(s);
+        throw std::runtime_error(std::string("GPU box filter: shader does not compile: ") + log);
+    }
+    return s;
+}
+
+// Unpack state a pass may have left (a bound buffer, row length) would skew the test upload.
+class PlainUnpack {
+public:
+    PlainUnpack() {
+        glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
+        glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment_);
+        glGetIntegerv(GL_UNPACK_ROW_LENGTH, &row_length_);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    }
+    ~PlainUnpack() {
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(buffer_));
+        glPixelStorei(GL_UNPACK_ALIGNMENT, alignment_);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, row_length_);
+    }
+
+private:
+    GLint buffer_ = 0, alignment_ = 4, row_length_ = 0;
+};
+
+}  // namespace
+
+GpuBoxFilter::~GpuBoxFilter() {
+    for (const Target& t : targets_) {
+        glDeleteFramebuffers(1, &t.fbo);
+        glDeleteTextures(1, &t.tex);
+    }
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (program_) glDeleteProgram(program_);
+}
+
+void GpuBoxFilter::ensure_program() {
+    if (program_) return;
+    const GLuint vs = compile(GL_VERTEX_SHADER, kVertex), fs = compile(GL_FRAGMENT_SHADER, kFragment);
+    program_ = glCreateProgram();
+    glAttachShader(program_, vs);
+    glAttachShader(program_, fs);
+    glLinkProgram(program_);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetProgramInfoLog(program_, sizeof log, nullptr, log);
+        glDeleteProgram(program_);
+        program_ = 0;
+        throw std::runtime_error(std::string("GPU box filter: program does not link: ") + log);
+    }
+    factor_loc_ = glGetUniformLocation(program_, "u_factor");
+    glCreateVertexArrays(1, &vao_);
+}
+
+GLuint GpuBoxFilter::sums(GLuint src, int w, int h, int factor, size_t slot) {
+    ensure_program();
+    if (targets_.size() <= slot) targets_.resize(slot + 1);
+    Target& t = targets_[slot];
+    if (t.w != w || t.h != h) {
+        if (t.tex) {
+            glDeleteFramebuffers(1, &t.fbo);
+            glDeleteTextures(1, &t.tex);
+        }
+        glCreateTextures(GL_TEXTURE_2D, 1, &t.tex);
+        glTextureStorage2D(t.tex, 1, GL_RGBA32F, w, h);
+        glCreateFramebuffers(1, &t.fbo);
+        glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.tex, 0);
+        t.w = w;
+        t.h = h;
+    }
+    // State a pass may have left that would change what lands in the target; the executor
+    // sets its documented state before every pass, so nothing needs restoring but bindings.
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+    glViewport(0, 0, w, h);
+    glUseProgram(program_);
+    glUniform1i(factor_loc_, factor);
+    glBindTextureUnit(0, src);
+    glBindVertexArray(vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glBindTextureUnit(0, 0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return t.tex;
+}
+
+bool GpuBoxFilter::exact(GLenum internal_format, int factor) {
+    const auto key = std::make_pair(internal_format, factor);
+    auto it = exact_.find(key);
+    if (it == exact_.end()) it = exact_.emplace(key, measure(internal_format, factor)).first;
+    return it->second;
+}
+
+bool GpuBoxFilter::measure(GLenum internal_format, int factor) {
+    // Odd block counts catch a flipped or shifted block; blocks without alpha take the plain
+    // mean; 8-bit steps with alpha 1 put many means exactly half-way between two 8-bit values.
+    const int w = 13, h = 11, W = w * factor, H = h * factor;
+    std::mt19937 rng(1234);
+    std::uniform_int_distribution<int> byte(0, 255);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> pattern(size_t(W) * size_t(H) * 4);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            float* p = &pattern[(size_t(y) * size_t(W) + size_t(x)) * 4];
+            const int block = (x / factor) + (y / factor) * w;
+            for (int c = 0; c < 4; ++c) p[c] = block % 2 ? unit(rng) : float(byte(rng)) / 255.0f;
+            if (block % 5 == 0) p[3] = 0.0f;
+            else if (block % 3 == 0) p[3] = 1.0f;
+        }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, internal_format, W, H);
+    const size_t slot = targets_.size();  // a target of its own, dropped afterwards
+    bool same = false;
+    try {
+        {
+            PlainUnpack unpack;
+            glTextureSubImage2D(tex, 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, pattern.data());
+        }
+        const Image cpu = box_downsample(read_texture(tex, W, H, 0, 4), factor);
+        Image gpu = read_texture(sums(tex, w, h, factor, slot), w, h, 0, 4);
+        divide_sums(gpu.pixels, factor);
+        same = cpu.pixels.size() == gpu.pixels.size() &&
+               std::memcmp(cpu.pixels.data(), gpu.pixels.data(), cpu.pixels.size() * sizeof(float)) == 0;
+    } catch (const std::exception&) {  // cannot be read back as floats, or no program: the CPU filters
+        same = false;
+    }
+    while (targets_.size() > slot) {
+        glDeleteFramebuffers(1, &targets_.back().fbo);
+        glDeleteTextures(1, &targets_.back().tex);
+        targets_.pop_back();
+    }
+    glDeleteTextures(1, &tex);
+    return same;
+}
+
+}  // namespace pathlet
