@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace pathlet {
 
@@ -15,6 +16,25 @@ struct LineVertex {
     float arc;  // arc length from the line's first point
 };
 static_assert(sizeof(LineVertex) == GpuScene::kLineVertexBytes);
+static_assert(offsetof(LineVertex, line_id) == GpuScene::kLineVertexIdOffset);
+
+// A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last;} lays it out.
+struct GpuChunk {
+    glm::vec3 lo;
+    uint32_t first;
+    glm::vec3 hi;
+    uint32_t last;
+};
+static_assert(sizeof(GpuChunk) == GpuScene::kGpuChunkBytes);
+
+// An immutable buffer with `data` (at least 4 bytes: a buffer of size 0 cannot be bound).
+GLuint immutable_buffer(const void* data, size_t bytes) {
+    GLuint b = 0;
+    glCreateBuffers(1, &b);
+    const uint32_t zero = 0;
+    glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, sizeof zero)), bytes ? data : &zero, 0);
+    return b;
+}
 
 glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
     float l = glm::length(v);
@@ -27,8 +47,10 @@ GpuScene::~GpuScene() { release(); }
 void GpuScene::release() {
     if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
     if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
+    if (chunk_buffer_) glDeleteBuffers(1, &chunk_buffer_);
+    if (lod_buffer_) glDeleteBuffers(1, &lod_buffer_);
     mesh_.release();
-    line_vao_ = line_vbo_ = 0;
+    line_vao_ = line_vbo_ = chunk_buffer_ = lod_buffer_ = 0;
 }
 
 void GpuMesh::release() {
@@ -122,6 +144,13 @@ void GpuScene::upload(const Scene& scene) {
     }
     lod_.build(pl, smax_ - smin_);
     chunks_.build(pl);
+    {
+        std::vector<GpuChunk> gc;
+        gc.reserve(chunks_.chunks().size());
+        for (const LineChunks::Chunk& c : chunks_.chunks()) gc.push_back({c.box.lo, c.first, c.box.hi, c.last});
+        chunk_buffer_ = immutable_buffer(gc.data(), gc.size() * sizeof(GpuChunk));
+        lod_buffer_ = immutable_buffer(lod_.keep().data(), lod_.keep().size() * sizeof(float));
+    }
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
                          v.empty() ? nullptr : v.data(), 0);

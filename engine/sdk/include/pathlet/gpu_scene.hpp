@@ -46,6 +46,16 @@ public:
     bool has_mesh() const { return mesh_.index_count() > 0; }
 
     GLuint line_vao() const { return line_vao_; }
+    // The vertex buffer of line_vao() (kLineVertexBytes per point, layout above; the line id
+    // at byte kLineVertexIdOffset), e.g. for a compute shader reading the points.
+    GLuint line_vbo() const { return line_vbo_; }
+    static constexpr size_t kLineVertexIdOffset = 40;
+    // The chunks and the level of detail on the GPU, for the line kit's culling (uploaded with
+    // the scene): per chunk {vec3 lo; uint first; vec3 hi; uint last} (std430, kGpuChunkBytes:
+    // its box and first and last point), and per point its LineLod tolerance (float).
+    static constexpr size_t kGpuChunkBytes = 32;
+    GLuint chunk_buffer() const { return chunk_buffer_; }
+    GLuint lod_buffer() const { return lod_buffer_; }
     GLuint mesh_vao() const { return mesh_.vao(); }  // location 0 position, 1 normal; indexed
     GLsizei mesh_index_count() const { return mesh_.index_count(); }
 
@@ -104,7 +114,7 @@ private:
     std::vector<float> arc_;  // per point, arc length from its line's first point
     LineLod lod_;
     LineChunks chunks_;
-    GLuint line_vao_ = 0, line_vbo_ = 0;
+    GLuint line_vao_ = 0, line_vbo_ = 0, chunk_buffer_ = 0, lod_buffer_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
