@@ -22,11 +22,13 @@ const uint kCullOccluded = 32u;   // hidden behind phase 1's depth: not drawn
 const uint kCullVisible = 64u;    // next frame's phase 1
 
 #ifdef CULL_USES_CHUNKS
-struct CullChunk {
+struct CullChunk {  // GpuScene::chunk_buffer()
     vec3 lo;
     uint first;
     vec3 hi;
     uint last;
+    uint line;
+    uint pad0, pad1, pad2;
 };
 layout(std430, binding = CULL_CHUNKS_BINDING) readonly buffer CullChunks { CullChunk cull_chunk[]; };
 #endif
@@ -34,14 +36,10 @@ layout(std430, binding = CULL_CHUNKS_BINDING) readonly buffer CullChunks { CullC
 // Per point, the level of detail's tolerance: kept when it exceeds the line's tolerance.
 layout(std430, binding = CULL_LOD_BINDING) readonly buffer CullLod { float cull_keep[]; };
 #endif
-#ifdef CULL_USES_POINTS
-// The scene's vertex buffer (GpuScene::line_vbo()): LINE_POINT_FLOATS floats a point.
-layout(std430, binding = CULL_POINTS_BINDING) readonly buffer CullPoints { float cull_point[]; };
-vec3 cull_position(uint i) {
-    uint k = i * uint(LINE_POINT_FLOATS);
-    return vec3(cull_point[k], cull_point[k + 1u], cull_point[k + 2u]);
-}
-uint cull_line_of(uint i) { return uint(floatBitsToInt(cull_point[i * uint(LINE_POINT_FLOATS) + uint(LINE_POINT_ID)])); }
+#ifdef CULL_USES_POSITIONS
+// Per point its position (GpuScene::position_buffer(): 3 floats a point, packed).
+layout(std430, binding = CULL_POSITIONS_BINDING) readonly buffer CullPositions { float cull_position_xyz[]; };
+vec3 cull_position(uint i) { return vec3(cull_position_xyz[3u * i], cull_position_xyz[3u * i + 1u], cull_position_xyz[3u * i + 2u]); }
 #endif
 #ifdef CULL_USES_LINES
 // Per line, this frame: the window's first and last point (last < first: none), the level of

@@ -13,7 +13,7 @@
 // the chunk draws.
 #define CULL_USES_CHUNKS
 #define CULL_USES_LOD
-#define CULL_USES_POINTS
+#define CULL_USES_POSITIONS
 #define CULL_USES_LINES
 #define CULL_USES_STATE
 #define CULL_USES_SLOTS
@@ -33,7 +33,8 @@ bool kept(uint j, float eps, uint line_first) {
     return cull_keep[j] > eps || ((j - line_first) & u_cull_skip_mask) == 0u;
 }
 
-// Adds point j's position to the box when j lies outside the chunk (the chunk's box holds the rest).
+// Adds point j to the box when it lies outside the chunk (the chunk's box holds the rest; a
+// point that is not finite has no segment drawn to it).
 void grow_by(uint j, CullChunk ch, inout vec3 lo, inout vec3 hi) {
     if (j >= ch.first && j <= ch.last) return;
     vec3 p = cull_position(j);
@@ -52,7 +53,7 @@ void main() {
     s.offset = 0u;
 
     CullChunk ch = cull_chunk[c];
-    uvec4 w = cull_line[cull_line_of(ch.first)];
+    uvec4 w = cull_line[ch.line];
     uint a = max(w.x, ch.first), b = min(w.y, ch.last);  // the window's piece of this chunk
     if (w.y < w.x || b <= a) {
         cull_state[c] = s;
@@ -65,7 +66,7 @@ void main() {
     // branches: llvmpipe runs a work group's lanes in step, so a store every step is cheaper
     // than a divergent one; a store that is not kept is overwritten by the next.)
     uint base = c * uint(CULL_SLOT), n = 0u;
-    vec3 lo = ch.lo, hi = ch.hi;  // the box of the strip's points: the chunk's, and points outside it
+    vec3 lo = ch.lo, hi = ch.hi;  // the box of the strip's points: the chunk's, and its points outside the chunk
     if (a == w.x) {
         uint j = a;
         while (j > w.w && !kept(j, eps, w.w)) --j;

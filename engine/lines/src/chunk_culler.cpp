@@ -11,11 +11,11 @@ namespace {
 
 // Storage binding points of the culling stages (GLSL gets them as CULL_*_BINDING): eight, the
 // GL 4.5 minimum of GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS; no stage uses more than six blocks.
-enum Binding : GLuint { kChunks, kLod, kPoints, kLines, kState, kSlots, kIndices, kHeader, kBindings };
+enum Binding : GLuint { kChunks, kLod, kPositions, kLines, kState, kSlots, kIndices, kHeader, kBindings };
 constexpr GLuint kTextureUnit = 0, kImageUnit = 0;  // the pyramid's sampler and image (saved, restored)
 constexpr int kGroup = 64;          // invocations a work group (one a chunk)
 constexpr int kScanThreads = 256;   // the scan's one work group
-constexpr int kTile = 8;            // pixels a side of a pyramid level-0 texel
+constexpr int kTile = 4;            // pixels a side of a pyramid level-0 texel (8: 17 % more segments drawn)
 constexpr int kTestTexels = 128;     // texels the depth test of a chunk reads at most
 constexpr uint32_t kSlot = LineChunks::kSegments + 1;  // strip points a chunk's slot holds (see line_cull_chunks.comp)
 constexpr size_t kStateBytes = 32;  // CullState in line_cull.glsl (checked against GL at first use)
@@ -105,10 +105,12 @@ void check_state_layout(const ShaderProgram& prog) {
 
 }  // namespace
 
+size_t culling_bytes(size_t chunks, size_t segments) { return chunks * (kStateBytes + kSlot * 4) + segments * 2 * 4; }
+
 const std::vector<std::string>& ChunkCuller::defines() {
     static const std::vector<std::string> d{def("CULL_CHUNKS_BINDING", kChunks),
             def("CULL_LOD_BINDING", kLod),
-            def("CULL_POINTS_BINDING", kPoints),
+            def("CULL_POSITIONS_BINDING", kPositions),
             def("CULL_LINES_BINDING", kLines),
             def("CULL_STATE_BINDING", kState),
             def("CULL_SLOTS_BINDING", kSlots),
@@ -119,8 +121,6 @@ const std::vector<std::string>& ChunkCuller::defines() {
             def("CULL_TILE", kTile),
             def("CULL_TEST_TEXELS", kTestTexels),
             def("CULL_SLOT", kSlot),
-            def("LINE_POINT_FLOATS", GpuScene::kLineVertexBytes / sizeof(float)),
-            def("LINE_POINT_ID", GpuScene::kLineVertexIdOffset / sizeof(float)),
             def("CULL_H_CMD", offsetof(Header, cmd) / 4),
             def("CULL_H_SEGMENTS", offsetof(Header, segments) / 4),
             def("CULL_H_CHUNKS", offsetof(Header, chunks) / 4),
@@ -154,6 +154,7 @@ void ChunkCuller::allocate(const GpuScene& scene) {
     segments_ = segments;
     // Zeroed state: nothing visible yet. A chunk's strip draws at most its own segment count
     // (line_cull_chunks.comp), so every segment of the scene twice (GL_LINES) bounds the indices.
+    // (culling_bytes() adds these up.)
     std::vector<uint8_t> zero(std::max<size_t>(chunks_ * kStateBytes, 4), 0);
     glCreateBuffers(1, &state_);
     glNamedBufferStorage(state_, GLsizeiptr(zero.size()), zero.data(), 0);
@@ -198,7 +199,7 @@ void ChunkCuller::upload_lines(const GpuScene& scene, const Frame& f) {
 void ChunkCuller::bind_buffers(const GpuScene& scene) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kChunks, scene.chunk_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLod, scene.lod_buffer());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPoints, scene.line_vbo());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositions, scene.position_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLines, lines_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kState, state_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlots, slots_);

@@ -1,5 +1,5 @@
 // The line kit's culling on the GPU (private to the kit; lines::Drawer uses it). Every line is
-// cut at load into chunks of up to 32 segments with a box (pathlet/line_chunks.hpp, on the GPU
+// cut at load into chunks of up to 8 segments with a box (pathlet/line_chunks.hpp, on the GPU
 // as GpuScene::chunk_buffer()). Per frame the CPU uploads one entry per line (the time window's
 // point range and the level of detail's tolerance) and records a fixed number of dispatches and
 // two indirect draws; it never reads anything back or waits, and its work does not grow with the
@@ -14,7 +14,7 @@
 //   phase 1  glDrawElementsIndirect: one draw (llvmpipe pays ~5 us a draw, so a command per
 //            chunk would cost more than the culling saves);
 //   pyramid  (line_depth_pyramid.comp) the pass's depth after phase 1 as the farthest depth
-//            per 8x8 tile, then 2x2 levels up to 1x1;
+//            per 4x4 tile, then 2x2 levels up to 1x1;
 //   test     (line_cull_test.comp) every other chunk whose box lies behind every texel it
 //            covers, at the finest level where that is at most 32 texels, is occluded; what the test does
 //            not hide (phase 1's chunks too) is next frame's phase 1;

@@ -16,14 +16,14 @@ struct LineVertex {
     float arc;  // arc length from the line's first point
 };
 static_assert(sizeof(LineVertex) == GpuScene::kLineVertexBytes);
-static_assert(offsetof(LineVertex, line_id) == GpuScene::kLineVertexIdOffset);
 
-// A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last;} lays it out.
+// A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last; uint line; uvec3 pad;} lays it out.
 struct GpuChunk {
     glm::vec3 lo;
     uint32_t first;
     glm::vec3 hi;
     uint32_t last;
+    uint32_t line, pad[3];
 };
 static_assert(sizeof(GpuChunk) == GpuScene::kGpuChunkBytes);
 
@@ -49,8 +49,9 @@ void GpuScene::release() {
     if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
     if (chunk_buffer_) glDeleteBuffers(1, &chunk_buffer_);
     if (lod_buffer_) glDeleteBuffers(1, &lod_buffer_);
+    if (position_buffer_) glDeleteBuffers(1, &position_buffer_);
     mesh_.release();
-    line_vao_ = line_vbo_ = chunk_buffer_ = lod_buffer_ = 0;
+    line_vao_ = line_vbo_ = chunk_buffer_ = lod_buffer_ = position_buffer_ = 0;
 }
 
 void GpuMesh::release() {
@@ -147,9 +148,15 @@ void GpuScene::upload(const Scene& scene) {
     {
         std::vector<GpuChunk> gc;
         gc.reserve(chunks_.chunks().size());
-        for (const LineChunks::Chunk& c : chunks_.chunks()) gc.push_back({c.box.lo, c.first, c.box.hi, c.last});
+        for (uint32_t line = 0; line < uint32_t(pl.lines.size()); ++line)
+            for (uint32_t k = chunks_.begin(line); k < chunks_.end(line); ++k) {
+                const LineChunks::Chunk& c = chunks_.chunks()[k];
+                gc.push_back({c.box.lo, c.first, c.box.hi, c.last, line, {0, 0, 0}});
+            }
         chunk_buffer_ = immutable_buffer(gc.data(), gc.size() * sizeof(GpuChunk));
         lod_buffer_ = immutable_buffer(lod_.keep().data(), lod_.keep().size() * sizeof(float));
+        static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+        position_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
     }
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),

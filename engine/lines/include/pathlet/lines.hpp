@@ -98,6 +98,10 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
                        const std::vector<std::string>& defines = {});
 
 class ChunkCuller;
+// GPU memory a culling line pass keeps for a scene of `chunks` chunks and `segments` segments:
+// per chunk its state and strip, and GL_LINES indices for every segment (what `pathlet graph
+// --plan` reports).
+size_t culling_bytes(size_t chunks, size_t segments);
 
 // Draws the pathlets of the current time window: sets the kit's uniforms on `prog` (in use),
 // uploads the per-pathlet buffer, draws with depth testing, reports the segment count. With the

@@ -13,7 +13,10 @@ namespace pathlet {
 
 class LineChunks {
 public:
-    static constexpr uint32_t kSegments = 32;
+    // Short chunks have tight boxes: on the study phantom with every line at 720p, 8 segments
+    // leave 62k of 234k segments to draw after occlusion culling, 16 leave 78k, 32 leave 104k
+    // (4 leave 53k, but the per-chunk work then costs more than it saves).
+    static constexpr uint32_t kSegments = 8;
 
     struct Chunk {
         Bounds box;          // of the chunk's finite points (invalid when it has none)
