@@ -62,9 +62,10 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                     "draw only the line chunks that can be seen, culled on the GPU: frustum culling and two-phase "
                     "occlusion culling against this pass's depth (the picture stays the same); false: every chunk of "
                     "the window")
-        .param_int("cull_min_segments", 100000, 0, 1 << 30,
+        .param_int("cull_min_segments", 70000, 0, 1 << 30,
                    "cull only when the window holds at least this many data segments: below it the culling's "
-                   "dispatches cost more than the hidden chunks save; 0 = always")
+                   "fixed work (its dispatches and the depth pyramid) costs more than the hidden chunks save "
+                   "(llvmpipe, study phantom, 720p: even at 68k, 15 % faster at 78k); 0 = always")
         .param_hook("color_hook", "color", defaults.color,
                     "colour hook: a GLSL file (on the shader path or next to the graph) defining vec4 "
                     "line_color_hook(vec4 rgba, LinePoint p); empty = the colour map as it is, opaque")
