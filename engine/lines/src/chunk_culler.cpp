@@ -1,4 +1,5 @@
 #include "chunk_culler.hpp"
+#include "saved_bindings.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -30,66 +31,12 @@ struct Header {
 };
 constexpr size_t kCountsOffset = offsetof(Header, segments);
 constexpr size_t kCountsBytes = sizeof(Header) - kCountsOffset;
-constexpr size_t kRingStride = 32;
-static_assert(kCountsBytes <= kRingStride);
 
 std::string def(const char* name, size_t v) { return std::string(name) + " " + std::to_string(v); }
 
 void set_uint(const ShaderProgram& p, const char* name, uint32_t v) { glProgramUniform1ui(p.id(), p.loc(name), v); }
 
 void dispatch(uint32_t invocations, uint32_t group) { glDispatchCompute(std::max<GLuint>(1, (invocations + group - 1) / group), 1, 1); }
-
-// The bindings the culling stages change, as the pass had them: put back before each draw of
-// the pass's program and at the end, so the pass's own buffers and textures stay where the
-// executor or the pass put them.
-class SavedBindings {
-public:
-    SavedBindings() {
-        for (GLuint i = 0; i < kBindings; ++i) {
-            glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &ssbo_[i].buffer);
-            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &ssbo_[i].start);
-            glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &ssbo_[i].size);
-        }
-        glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic_);
-        glGetIntegerv(GL_ACTIVE_TEXTURE, &active_);
-        glActiveTexture(GL_TEXTURE0 + kTextureUnit);
-        glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_);
-        glActiveTexture(GLenum(active_));
-        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, kImageUnit, &image_.name);
-        glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, kImageUnit, &image_.level);
-        glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, kImageUnit, &image_.layer);
-        glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, kImageUnit, &image_.access);
-        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, kImageUnit, &image_.format);
-        GLboolean layered = GL_FALSE;
-        glGetBooleani_v(GL_IMAGE_BINDING_LAYERED, kImageUnit, &layered);
-        image_.layered = layered;
-    }
-    void restore() const {
-        for (GLuint i = 0; i < kBindings; ++i) {
-            const Range& r = ssbo_[i];
-            if (r.buffer && r.size > 0)
-                glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, GLuint(r.buffer), GLintptr(r.start), GLsizeiptr(r.size));
-            else
-                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, GLuint(r.buffer));
-        }
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(generic_));
-        glBindTextureUnit(kTextureUnit, GLuint(texture_));
-        glBindImageTexture(kImageUnit, GLuint(image_.name), image_.level, image_.layered, image_.layer, GLenum(image_.access),
-                           GLenum(image_.format ? image_.format : GL_R8));
-    }
-
-private:
-    struct Range {
-        GLint buffer = 0;
-        GLint64 start = 0, size = 0;
-    };
-    Range ssbo_[kBindings];
-    GLint generic_ = 0, active_ = GL_TEXTURE0, texture_ = 0;
-    struct {
-        GLint name = 0, level = 0, layer = 0, access = GL_READ_ONLY, format = 0;
-        GLboolean layered = GL_FALSE;
-    } image_;
-};
 
 // CullState's stride as GL lays it out against kStateBytes: a drift (an edited line_cull.glsl)
 // is an error naming the struct, not chunks read from the wrong place.
@@ -131,12 +78,6 @@ const std::vector<std::string>& ChunkCuller::defines() {
 }
 
 ChunkCuller::~ChunkCuller() {
-    for (GLsync& f : fence_)
-        if (f) glDeleteSync(f);
-    if (readback_) {
-        glUnmapNamedBuffer(readback_);
-        glDeleteBuffers(1, &readback_);
-    }
     GLuint buffers[] = {lines_, state_, slots_, indices_, header_};
     glDeleteBuffers(5, buffers);  // 0s are ignored
     if (pyramid_) glDeleteTextures(1, &pyramid_);
@@ -166,10 +107,7 @@ void ChunkCuller::allocate(const GpuScene& scene) {
         const Header h{};
         glCreateBuffers(1, &header_);
         glNamedBufferStorage(header_, sizeof(Header), &h, 0);
-        glCreateBuffers(1, &readback_);
-        const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-        glNamedBufferStorage(readback_, kRing * kRingStride, nullptr, flags);
-        mapped_ = static_cast<const uint32_t*>(glMapNamedBufferRange(readback_, 0, kRing * kRingStride, flags));
+        counts_ = std::make_unique<GpuReadback>(kCountsBytes);
     }
     fresh_ = true;
 }
@@ -278,41 +216,20 @@ void ChunkCuller::draw_phase(const GpuScene& scene, int phase) const {
     glBindVertexArray(0);
 }
 
-// This frame's counts into the ring, with a fence (skipped while the oldest copy is unread).
-void ChunkCuller::copy_counts() {
-    if (fence_[next_]) poll();
-    if (fence_[next_]) return;
-    glCopyNamedBufferSubData(header_, readback_, kCountsOffset, GLintptr(next_ * kRingStride), kCountsBytes);
-    fence_[next_] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    next_ = (next_ + 1) % kRing;
-}
-
-// Reads every copy whose fence has signalled, oldest first; never waits.
-void ChunkCuller::poll() {
-    for (int k = 0; k < kRing; ++k) {
-        const int slot = (next_ + k) % kRing;  // oldest first
-        if (!fence_[slot]) continue;
-        const GLenum r = glClientWaitSync(fence_[slot], GL_SYNC_FLUSH_COMMANDS_BIT, 0);
-        if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) break;
-        glDeleteSync(fence_[slot]);
-        fence_[slot] = nullptr;
-        Header h{};
-        std::memcpy(reinterpret_cast<char*>(&h) + kCountsOffset, mapped_ + slot * kRingStride / 4, kCountsBytes);
-        latest_.chunks = h.chunks;
-        latest_.frustum_culled = h.outside;
-        latest_.phase1 = h.drawn[0];
-        latest_.phase2 = h.drawn[1];
-        latest_.occluded = h.occluded;
-        latest_.segments = double(h.segments[0]) + double(h.segments[1]);
-        have_latest_ = true;
-    }
-}
+// This frame's counts, read back once the GPU is done (skipped while every copy is in flight).
+void ChunkCuller::copy_counts() { counts_->copy(header_, kCountsOffset); }
 
 bool ChunkCuller::stats(Stats& out) {
-    poll();
-    if (!have_latest_) return false;
-    out = latest_;
-    have_latest_ = false;  // each frame's counts once
+    const void* p = counts_ ? counts_->poll() : nullptr;
+    if (!p) return false;
+    Header h{};
+    std::memcpy(reinterpret_cast<char*>(&h) + kCountsOffset, p, kCountsBytes);
+    out.chunks = h.chunks;
+    out.frustum_culled = h.outside;
+    out.phase1 = h.drawn[0];
+    out.phase2 = h.drawn[1];
+    out.occluded = h.occluded;
+    out.segments = double(h.segments[0]) + double(h.segments[1]);
     return true;
 }
 
@@ -322,7 +239,7 @@ void ChunkCuller::draw(PassContext& ctx, const ShaderProgram& prog, const Frame&
     upload_lines(scene, f);
     const uint32_t chunks = uint32_t(chunks_);
     const bool two_phases = f.depth != 0;
-    const SavedBindings saved;
+    const SavedBindings saved(kBindings, kTextureUnit, kImageUnit);
     bind_buffers(scene);
 
     ShaderProgram& c = ctx.program({"line_cull_chunks.comp"}, defines());

@@ -32,11 +32,12 @@
 // a GPU a frame or two late.
 #pragma once
 
+#include <pathlet/gpu_readback.hpp>
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/pass.hpp>
 #include <pathlet/shader.hpp>
 
-#include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -91,7 +92,6 @@ private:
     void test(PassContext& ctx, glm::ivec2 size, uint32_t chunks, bool remember);
     void draw_phase(const GpuScene& scene, int phase) const;
     void copy_counts();
-    void poll();
 
     const GpuScene* scene_ = nullptr;  // what the buffers were made for
     const ShaderProgram* checked_ = nullptr;  // the chunk stage whose CullState layout was checked
@@ -104,14 +104,7 @@ private:
     glm::ivec2 pyramid_size_{0};
     int pyramid_levels_ = 0;
 
-    // The counts' ring: copies of the header's counts, each with a fence, read once signalled.
-    static constexpr int kRing = 4;
-    GLuint readback_ = 0;
-    const uint32_t* mapped_ = nullptr;
-    std::array<GLsync, kRing> fence_{};
-    int next_ = 0;  // the slot the next frame copies into
-    Stats latest_;
-    bool have_latest_ = false;
+    std::unique_ptr<GpuReadback> counts_;  // the header's counts, read when the GPU is done
 };
 
 }  // namespace pathlet::lines
