@@ -36,8 +36,7 @@ std::string scene_memory_text(const SceneOptions& data) {
     const Scene scene = data.load(true);
     LineChunks chunks;
     chunks.build(scene.lines);
-    size_t segments = 0;
-    for (const LineChunks::Chunk& c : chunks.chunks()) segments += c.last - c.first;
+    const size_t segments = chunks.segments();
     std::snprintf(buf, sizeof buf,
                   "data %s (not in the totals above): %zu lines, %zu points: line points %.2f MiB (GPU), %zu line "
                   "chunks %.2f MiB (CPU, for culling) + %.2f MiB (GPU); each culling line pass %.2f MiB (GPU)\n",

@@ -85,8 +85,7 @@ ChunkCuller::~ChunkCuller() {
 
 void ChunkCuller::allocate(const GpuScene& scene) {
     const std::vector<LineChunks::Chunk>& chunks = scene.chunks().chunks();
-    size_t segments = 0;
-    for (const LineChunks::Chunk& c : chunks) segments += c.last - c.first;
+    const size_t segments = scene.chunks().segments();
     if (&scene == scene_ && chunks.size() == chunks_ && segments == segments_ && state_) return;
     GLuint old[] = {state_, slots_, indices_};
     glDeleteBuffers(3, old);

@@ -30,10 +30,12 @@ public:
     uint32_t begin(uint32_t line) const { return line_begin_[line]; }
     uint32_t end(uint32_t line) const { return line_begin_[line + 1]; }
     size_t bytes() const { return chunks_.size() * sizeof(Chunk) + line_begin_.size() * sizeof(uint32_t); }
+    size_t segments() const { return segments_; }  // of all chunks
 
 private:
     std::vector<Chunk> chunks_;
     std::vector<uint32_t> line_begin_{0};  // per line, plus one past the end
+    size_t segments_ = 0;
 };
 
 }  // namespace pathlet
