@@ -87,7 +87,7 @@ TEST(Cli, GraphPlanAndDot) {
     CliRun r = pathlet_cli("graph " + src("graphs/demo_blur.json") + " --plan --size 64x64");
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("unused"), std::string::npos);  // the culled pass is explained
-    EXPECT_NE(r.out.find("line chunks 32 B per 32 segments"), std::string::npos) << r.out;  // without data: per unit
+    EXPECT_NE(r.out.find("line chunks 32 B per 8 segments"), std::string::npos) << r.out;  // without data: per unit
     // With data: the chunks of this data (two lines of a few points: one chunk each).
     r = pathlet_cli("graph " + src("graphs/demo_blur.json") + " --plan --size 64x64 --data " +
                     src("tests/engine/data/two_lines.vtk"));

@@ -9,6 +9,7 @@
 #include <pathlet/gl.hpp>
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/line_chunks.hpp>
+#include <pathlet/lines.hpp>
 #include "util/atomic_file.hpp"
 
 #include <cstdio>
@@ -16,28 +17,33 @@
 namespace pathlet::cli {
 namespace {
 
-// The memory a data set adds besides the graph's resources: the line points on the GPU and
-// the chunks the line kit culls by (CPU). Per unit without data, measured with it.
+// The memory a data set adds besides the graph's resources: the line points and their level of
+// detail on the GPU, the chunks the line kit culls by (CPU and GPU), and what each culling line
+// pass keeps on the GPU. Per unit without data, measured with it.
 std::string scene_memory_text(const SceneOptions& data) {
     constexpr double kMiB = 1024.0 * 1024.0;
     const size_t chunk_bytes = sizeof(LineChunks::Chunk);
-    char buf[512];
+    char buf[768];
     if (!data.given()) {
         std::snprintf(buf, sizeof buf,
-                      "data (not in the totals above): line points %zu B each (GPU); line chunks %zu B per %u segments "
-                      "(CPU, for culling); --phantom or --data gives the sizes for a data set\n",
-                      GpuScene::kLineVertexBytes, chunk_bytes, LineChunks::kSegments);
+                      "data (not in the totals above): line points %zu B each (GPU, with the level of detail); line "
+                      "chunks %zu B per %u segments (CPU, for culling) + %zu B (GPU); each culling line pass %zu B per "
+                      "chunk + %zu B per segment (GPU); --phantom or --data gives the sizes for a data set\n",
+                      GpuScene::kPointGpuBytes, chunk_bytes, LineChunks::kSegments, GpuScene::kGpuChunkBytes,
+                      lines::culling_bytes(1, 0), lines::culling_bytes(0, 1));
         return buf;
     }
     const Scene scene = data.load(true);
     LineChunks chunks;
     chunks.build(scene.lines);
+    const size_t segments = chunks.segments();
     std::snprintf(buf, sizeof buf,
                   "data %s (not in the totals above): %zu lines, %zu points: line points %.2f MiB (GPU), %zu line "
-                  "chunks %.2f MiB (CPU, for culling)\n",
+                  "chunks %.2f MiB (CPU, for culling) + %.2f MiB (GPU); each culling line pass %.2f MiB (GPU)\n",
                   scene.source.c_str(), scene.lines.line_count(), scene.lines.point_count(),
-                  double(scene.lines.point_count() * GpuScene::kLineVertexBytes) / kMiB, chunks.chunks().size(),
-                  double(chunks.bytes()) / kMiB);
+                  double(scene.lines.point_count() * GpuScene::kPointGpuBytes) / kMiB, chunks.chunks().size(),
+                  double(chunks.bytes()) / kMiB, double(chunks.chunks().size() * GpuScene::kGpuChunkBytes) / kMiB,
+                  double(lines::culling_bytes(chunks.chunks().size(), segments)) / kMiB);
     return buf;
 }
 

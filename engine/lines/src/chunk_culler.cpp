@@ -1,131 +1,282 @@
 #include "chunk_culler.hpp"
+#include "saved_bindings.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
 
 namespace pathlet::lines {
 
 namespace {
-// Adds the time since construction to `ms` (the culler's own CPU work, no GL waits).
-struct Timed {
-    double& ms;
-    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-    ~Timed() { ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); }
+
+// Storage binding points of the culling stages (GLSL gets them as CULL_*_BINDING): eight, the
+// GL 4.5 minimum of GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS; no stage uses more than six blocks.
+enum Binding : GLuint { kChunks, kLod, kPositions, kLines, kState, kSlots, kIndices, kHeader, kBindings };
+constexpr GLuint kTextureUnit = 0, kImageUnit = 0;  // the pyramid's sampler and image (saved, restored)
+constexpr int kGroup = 64;          // invocations a work group (one a chunk)
+constexpr int kScanThreads = 256;   // the scan's one work group
+constexpr int kTile = 4;            // pixels a side of a pyramid level-0 texel (8: 17 % more segments drawn)
+constexpr int kTestTexels = 128;     // texels the depth test of a chunk reads at most
+constexpr uint32_t kSlot = LineChunks::kSegments + 1;  // strip points a chunk's slot holds (see line_cull_chunks.comp)
+constexpr size_t kStateBytes = 32;  // CullState in line_cull.glsl (checked against GL at first use)
+
+// The header buffer: the two phases' DrawElementsIndirectCommands, then the frame's counts.
+struct Header {
+    uint32_t cmd[2][5];
+    uint32_t segments[2];
+    uint32_t chunks, outside;
+    uint32_t drawn[2];
+    uint32_t occluded;
 };
+constexpr size_t kCountsOffset = offsetof(Header, segments);
+constexpr size_t kCountsBytes = sizeof(Header) - kCountsOffset;
+
+std::string def(const char* name, size_t v) { return std::string(name) + " " + std::to_string(v); }
+
+void set_uint(const ShaderProgram& p, const char* name, uint32_t v) { glProgramUniform1ui(p.id(), p.loc(name), v); }
+
+void dispatch(uint32_t invocations, uint32_t group) { glDispatchCompute(std::max<GLuint>(1, (invocations + group - 1) / group), 1, 1); }
+
+// CullState's stride as GL lays it out against kStateBytes: a drift (an edited line_cull.glsl)
+// is an error naming the struct, not chunks read from the wrong place.
+void check_state_layout(const ShaderProgram& prog) {
+    const GLuint i = glGetProgramResourceIndex(prog.id(), GL_BUFFER_VARIABLE, "cull_state[0].rect");
+    GLint stride = -1;
+    const GLenum prop = GL_TOP_LEVEL_ARRAY_STRIDE;
+    if (i != GL_INVALID_INDEX) glGetProgramResourceiv(prog.id(), GL_BUFFER_VARIABLE, i, 1, &prop, 1, nullptr, &stride);
+    if (stride != GLint(kStateBytes))
+        throw ShaderError("line kit culling: CullState is " + std::to_string(stride) + " bytes in line_cull.glsl but " +
+                          std::to_string(kStateBytes) + " in chunk_culler.cpp");
+}
+
 }  // namespace
 
-// Consecutive pieces of one line join into one range: the level of detail widens every range
-// to the kept points around it, which would draw the segments at a join twice.
-void ChunkCuller::append(GpuScene::Ranges& r, const Piece& p) {
-    if (!r.first.empty() && r.line.back() == p.line && r.first.back() + r.count.back() - 1 == p.first) {
-        r.count.back() += p.count - 1;
-    } else {
-        r.first.push_back(p.first);
-        r.count.push_back(p.count);
-        r.line.push_back(p.line);
-    }
-    r.segments += size_t(p.count - 1);
+size_t culling_bytes(size_t chunks, size_t segments) { return chunks * (kStateBytes + kSlot * 4) + segments * 2 * 4; }
+
+const std::vector<std::string>& ChunkCuller::defines() {
+    static const std::vector<std::string> d{def("CULL_CHUNKS_BINDING", kChunks),
+            def("CULL_LOD_BINDING", kLod),
+            def("CULL_POSITIONS_BINDING", kPositions),
+            def("CULL_LINES_BINDING", kLines),
+            def("CULL_STATE_BINDING", kState),
+            def("CULL_SLOTS_BINDING", kSlots),
+            def("CULL_INDICES_BINDING", kIndices),
+            def("CULL_HEADER_BINDING", kHeader),
+            def("CULL_GROUP", kGroup),
+            def("CULL_SCAN_THREADS", kScanThreads),
+            def("CULL_TILE", kTile),
+            def("CULL_TEST_TEXELS", kTestTexels),
+            def("CULL_SLOT", kSlot),
+            def("CULL_H_CMD", offsetof(Header, cmd) / 4),
+            def("CULL_H_SEGMENTS", offsetof(Header, segments) / 4),
+            def("CULL_H_CHUNKS", offsetof(Header, chunks) / 4),
+            def("CULL_H_OUTSIDE", offsetof(Header, outside) / 4),
+            def("CULL_H_DRAWN", offsetof(Header, drawn) / 4),
+            def("CULL_H_OCCLUDED", offsetof(Header, occluded) / 4)};
+    return d;
 }
 
-void ChunkCuller::split(const GpuScene::Ranges& window, const LineChunks& chunks, const glm::vec3* points,
-                        const glm::mat4& view_proj, float grow, bool occlusion) {
-    view_proj_ = view_proj;
-    if (visible_.size() != chunks.chunks().size()) visible_.assign(chunks.chunks().size(), 0);
-    stats_ = {};
-    Timed timed{stats_.cpu_ms};
-    p1_.clear();
-    rest_.clear();
-    drawn2_.clear();
-    phase1_ = {};
-    phase2_ = {};
-    for (size_t i = 0; i < window.first.size(); ++i) {
-        const uint32_t line = window.line[i];
-        const uint32_t f = uint32_t(window.first[i]), l = f + uint32_t(window.count[i]) - 1;
-        for (uint32_t c = chunks.begin(line); c < chunks.end(line); ++c) {
-            const LineChunks::Chunk& ch = chunks.chunks()[c];
-            const uint32_t a = std::max(f, ch.first), b = std::min(l, ch.last);
-            if (b <= a) continue;  // no segment of this chunk in the window
-            ++stats_.chunks;
-            // The piece's own box: the window may hold a few of the chunk's segments only.
-            Bounds box = ch.box;
-            if (a != ch.first || b != ch.last) {
-                box = {glm::vec3(std::numeric_limits<float>::infinity()), glm::vec3(-std::numeric_limits<float>::infinity())};
-                for (uint32_t i = a; i <= b; ++i)
-                    if (std::isfinite(points[i].x) && std::isfinite(points[i].y) && std::isfinite(points[i].z))
-                        box.lo = glm::min(box.lo, points[i]), box.hi = glm::max(box.hi, points[i]);
-            }
-            if (box.valid()) box.lo -= glm::vec3(grow), box.hi += glm::vec3(grow);
-            // Outside the frustum when all eight corners of the grown box lie beyond one plane.
-            bool outside = false;
-            if (box.valid()) {
-                int out[6] = {0, 0, 0, 0, 0, 0};
-                for (int k = 0; k < 8; ++k) {
-                    const glm::vec4 p = view_proj * glm::vec4(k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y,
-                                                              k & 4 ? box.hi.z : box.lo.z, 1.0f);
-                    out[0] += p.x < -p.w, out[1] += p.x > p.w, out[2] += p.y < -p.w;
-                    out[3] += p.y > p.w, out[4] += p.z < -p.w, out[5] += p.z > p.w;
-                }
-                for (int plane : out) outside |= plane == 8;
-            }
-            if (outside) {
-                ++stats_.frustum_culled;
-                visible_[c] = 0;
-                continue;
-            }
-            const Piece piece{c, GLint(a), GLsizei(b - a + 1), line, box};
-            (visible_[c] || !occlusion ? p1_ : rest_).push_back(piece);
-        }
-    }
-    for (const Piece& p : p1_) append(phase1_, p);
-    stats_.phase1 = p1_.size();
+ChunkCuller::~ChunkCuller() {
+    GLuint buffers[] = {lines_, state_, slots_, indices_, header_};
+    glDeleteBuffers(5, buffers);  // 0s are ignored
+    if (pyramid_) glDeleteTextures(1, &pyramid_);
 }
 
-// Hidden: every tile the grown box's screen rectangle touches holds only nearer depths than
-// the box's nearest corner (window depth is monotonic in eye depth: a corner is the nearest).
-bool ChunkCuller::hidden(const Bounds& box, TileDepth depth) const {
-    if (!box.valid()) return false;
-    const glm::vec3 lo = box.lo, hi = box.hi;
-    glm::vec2 pmin(1e30f), pmax(-1e30f);
-    float zmin = 1.0f;
-    for (int k = 0; k < 8; ++k) {
-        const glm::vec4 p = view_proj_ * glm::vec4(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z, 1.0f);
-        if (!(p.w > 1e-6f)) return false;  // reaches behind the camera
-        const glm::vec3 ndc = glm::vec3(p) / p.w;
-        pmin = glm::min(pmin, glm::vec2(ndc));
-        pmax = glm::max(pmax, glm::vec2(ndc));
-        zmin = std::min(zmin, 0.5f * ndc.z + 0.5f);
+void ChunkCuller::allocate(const GpuScene& scene) {
+    const std::vector<LineChunks::Chunk>& chunks = scene.chunks().chunks();
+    const size_t segments = scene.chunks().segments();
+    if (&scene == scene_ && chunks.size() == chunks_ && segments == segments_ && state_) return;
+    GLuint old[] = {state_, slots_, indices_};
+    glDeleteBuffers(3, old);
+    scene_ = &scene;
+    chunks_ = chunks.size();
+    segments_ = segments;
+    // Zeroed state: nothing visible yet. A chunk's strip draws at most its own segment count
+    // (line_cull_chunks.comp), so every segment of the scene twice (GL_LINES) bounds the indices.
+    // (culling_bytes() adds these up.)
+    std::vector<uint8_t> zero(std::max<size_t>(chunks_ * kStateBytes, 4), 0);
+    glCreateBuffers(1, &state_);
+    glNamedBufferStorage(state_, GLsizeiptr(zero.size()), zero.data(), 0);
+    glCreateBuffers(1, &slots_);
+    glNamedBufferStorage(slots_, GLsizeiptr(std::max<size_t>(chunks_ * kSlot * 4, 4)), nullptr, 0);
+    glCreateBuffers(1, &indices_);
+    glNamedBufferStorage(indices_, GLsizeiptr(std::max<size_t>(segments_ * 2 * 4, 4)), nullptr, 0);
+    if (!header_) {
+        const Header h{};
+        glCreateBuffers(1, &header_);
+        glNamedBufferStorage(header_, sizeof(Header), &h, 0);
+        counts_ = std::make_unique<GpuReadback>(kCountsBytes);
     }
-    if (zmin <= 0.0f) return false;
-    const glm::ivec2 tiles = depth.tiles;
-    const glm::vec2 size = glm::vec2(tiles * kTile);
-    // Pixels the rectangle can touch (one extra on each side for rasterisation), then tiles.
-    const glm::ivec2 a = glm::clamp(glm::ivec2(glm::floor((pmin * 0.5f + 0.5f) * size)) - 1, glm::ivec2(0), tiles * kTile - 1);
-    const glm::ivec2 b = glm::clamp(glm::ivec2(glm::ceil((pmax * 0.5f + 0.5f) * size)) + 1, glm::ivec2(0), tiles * kTile - 1);
-    for (int ty = a.y / kTile; ty <= b.y / kTile; ++ty)
-        for (int tx = a.x / kTile; tx <= b.x / kTile; ++tx)
-            if (depth.farthest[size_t(ty) * size_t(tiles.x) + size_t(tx)] >= zmin) return false;
+    fresh_ = true;
+}
+
+void ChunkCuller::upload_lines(const GpuScene& scene, const Frame& f) {
+    const Pathlines& pl = scene.cpu().lines;
+    const GpuScene::Ranges& w = *f.window;
+    // Lines without a range: last < first.
+    line_table_.assign(std::max<size_t>(pl.lines.size(), 1), glm::uvec4(1, 0, 0, 0));
+    for (size_t i = 0; i < w.first.size(); ++i) {
+        const uint32_t line = w.line[i];
+        const float eps = f.lod ? scene.lod().tolerance(line, f.eye, f.scale, f.perspective, f.lod_px) : -1.0f;
+        uint32_t bits;
+        std::memcpy(&bits, &eps, sizeof bits);
+        line_table_[line] = glm::uvec4(uint32_t(w.first[i]), uint32_t(w.first[i] + w.count[i] - 1), bits, pl.lines[line].first);
+    }
+    const size_t bytes = line_table_.size() * sizeof(glm::uvec4);
+    if (bytes > lines_capacity_) {
+        if (lines_) glDeleteBuffers(1, &lines_);
+        glCreateBuffers(1, &lines_);
+        glNamedBufferStorage(lines_, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        lines_capacity_ = bytes;
+    }
+    glNamedBufferSubData(lines_, 0, GLsizeiptr(bytes), line_table_.data());
+}
+
+void ChunkCuller::bind_buffers(const GpuScene& scene) const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kChunks, scene.chunk_buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLod, scene.lod_buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositions, scene.position_buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLines, lines_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kState, state_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlots, slots_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndices, indices_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHeader, header_);
+}
+
+void ChunkCuller::scan_and_emit(PassContext& ctx, uint32_t chunks, int phase) {
+    const std::vector<std::string>& d = defines();
+    ShaderProgram& scan = ctx.program({"line_cull_scan.comp"}, d);
+    scan.use();
+    set_uint(scan, "u_cull_chunks", chunks);
+    scan.set("u_cull_phase", phase);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    ShaderProgram& emit = ctx.program({"line_cull_emit.comp"}, d);
+    emit.use();
+    set_uint(emit, "u_cull_chunks", chunks);
+    emit.set("u_cull_phase", phase);
+    dispatch(chunks, kGroup);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+// The depth after phase 1 as a pyramid of farthest depths (level 0: kTile x kTile pixels).
+void ChunkCuller::pyramid(PassContext& ctx, GLuint depth, glm::ivec2 size) {
+    const glm::ivec2 base = (size + kTile - 1) / kTile;
+    if (base != pyramid_size_) {
+        if (pyramid_) glDeleteTextures(1, &pyramid_);
+        pyramid_levels_ = 1;
+        for (int m = std::max(base.x, base.y); m > 1; m /= 2) ++pyramid_levels_;
+        glCreateTextures(GL_TEXTURE_2D, 1, &pyramid_);
+        glTextureStorage2D(pyramid_, pyramid_levels_, GL_R32F, base.x, base.y);
+        pyramid_size_ = base;
+    }
+    const std::vector<std::string>& d = defines();
+    static const std::vector<std::string> db = [] {
+        std::vector<std::string> v = defines();
+        v.push_back("CULL_PYRAMID_BASE");
+        return v;
+    }();
+    glm::ivec2 level_size = base;
+    for (int level = 0; level < pyramid_levels_; ++level) {
+        ShaderProgram& p = ctx.program({"line_depth_pyramid.comp"}, level == 0 ? db : d);
+        p.set_unit("u_cull_source", int(kTextureUnit));
+        p.set_unit("u_cull_target", int(kImageUnit));
+        p.use();
+        if (level > 0) p.set("u_cull_level", level);
+        glBindTextureUnit(kTextureUnit, level == 0 ? depth : pyramid_);
+        glBindImageTexture(kImageUnit, pyramid_, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glDispatchCompute(GLuint(level_size.x + 7) / 8, GLuint(level_size.y + 7) / 8, 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        level_size = glm::max(level_size / 2, glm::ivec2(1));
+    }
+}
+
+void ChunkCuller::test(PassContext& ctx, glm::ivec2 size, uint32_t chunks, bool remember) {
+    ShaderProgram& t = ctx.program({"line_cull_test.comp"}, defines());
+    t.set_unit("u_cull_pyramid", int(kTextureUnit));
+    t.use();
+    set_uint(t, "u_cull_chunks", chunks);
+    t.set("u_cull_pixels", size);
+    t.set("u_cull_remember", remember ? 1 : 0);
+    glBindTextureUnit(kTextureUnit, pyramid_);
+    dispatch(chunks, kGroup);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void ChunkCuller::draw_phase(const GpuScene& scene, int phase) const {
+    // The scene's VAO is shared by every line pass: bind this culler's indices each time.
+    glVertexArrayElementBuffer(scene.line_vao(), indices_);
+    glBindVertexArray(scene.line_vao());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, header_);
+    glDrawElementsIndirect(GL_LINES, GL_UNSIGNED_INT, reinterpret_cast<const void*>(offsetof(Header, cmd) + size_t(phase - 1) * sizeof(Header::cmd[0])));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glBindVertexArray(0);
+}
+
+// This frame's counts, read back once the GPU is done (skipped while every copy is in flight).
+void ChunkCuller::copy_counts() { counts_->copy(header_, kCountsOffset); }
+
+bool ChunkCuller::stats(Stats& out) {
+    const void* p = counts_ ? counts_->poll() : nullptr;
+    if (!p) return false;
+    Header h{};
+    std::memcpy(reinterpret_cast<char*>(&h) + kCountsOffset, p, kCountsBytes);
+    out.chunks = h.chunks;
+    out.frustum_culled = h.outside;
+    out.phase1 = h.drawn[0];
+    out.phase2 = h.drawn[1];
+    out.occluded = h.occluded;
+    out.segments = double(h.segments[0]) + double(h.segments[1]);
     return true;
 }
 
-void ChunkCuller::test_rest(TileDepth depth) {
-    Timed timed{stats_.cpu_ms};
-    for (const Piece& p : rest_) {
-        if (depth.farthest && hidden(p.box, depth)) {
-            ++stats_.occluded;
-            continue;
-        }
-        append(phase2_, p);
-        drawn2_.push_back(p);
-    }
-    stats_.phase2 = drawn2_.size();
-}
+void ChunkCuller::draw(PassContext& ctx, const ShaderProgram& prog, const Frame& f) {
+    const GpuScene& scene = ctx.scene();
+    allocate(scene);
+    upload_lines(scene, f);
+    const uint32_t chunks = uint32_t(chunks_);
+    const bool two_phases = f.depth != 0;
+    const SavedBindings saved(kBindings, kTextureUnit, kImageUnit);
+    bind_buffers(scene);
 
-void ChunkCuller::remember(TileDepth depth) {
-    Timed timed{stats_.cpu_ms};
-    for (const Piece& p : rest_) visible_[p.chunk] = 0;
-    for (const auto* list : {&p1_, &drawn2_})
-        for (const Piece& p : *list) visible_[p.chunk] = depth.farthest && hidden(p.box, depth) ? 0 : 1;
+    ShaderProgram& c = ctx.program({"line_cull_chunks.comp"}, defines());
+    if (&c != checked_) check_state_layout(c), checked_ = &c;
+    c.use();
+    c.set("u_cull_view_proj", f.view_proj);
+    c.set("u_cull_grow", f.grow);
+    set_uint(c, "u_cull_chunks", chunks);
+    set_uint(c, "u_cull_points", uint32_t(scene.cpu().lines.position.size()));
+    // max_skip as a mask (an integer division per point and lane is dear on llvmpipe).
+    if (f.max_skip & (f.max_skip - 1)) throw std::logic_error("line kit culling: max_skip must be a power of two");
+    set_uint(c, "u_cull_skip_mask", f.max_skip ? f.max_skip - 1 : ~0u);
+    c.set("u_cull_occlusion", two_phases ? 1 : 0);
+    dispatch(chunks, kGroup);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    scan_and_emit(ctx, chunks, 1);
+    if (!two_phases) copy_counts();
+    saved.restore();
+    prog.use();
+    draw_phase(scene, 1);
+    if (two_phases) {
+        bind_buffers(scene);
+        pyramid(ctx, f.depth, f.depth_size);
+            test(ctx, f.depth_size, chunks, false);
+            scan_and_emit(ctx, chunks, 2);
+            copy_counts();
+        saved.restore();
+        prog.use();
+        draw_phase(scene, 2);
+            if (fresh_) {  // phase 1 was empty: the final depth decides the next frame's
+            bind_buffers(scene);
+            pyramid(ctx, f.depth, f.depth_size);
+            test(ctx, f.depth_size, chunks, true);
+            saved.restore();
+            prog.use();
+        }
+        fresh_ = false;
+    }
 }
 
 }  // namespace pathlet::lines

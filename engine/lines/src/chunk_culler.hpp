@@ -1,24 +1,44 @@
-// The line kit's culling (private to the kit; lines::Drawer uses it): the time window's ranges
-// cut into chunks (pathlet/line_chunks.hpp), chunks outside the view frustum dropped, and
-// two-phase occlusion culling against the pass's own depth buffer:
+// The line kit's culling on the GPU (private to the kit; lines::Drawer uses it). Every line is
+// cut at load into chunks of up to 8 segments with a box (pathlet/line_chunks.hpp, on the GPU
+// as GpuScene::chunk_buffer()). Per frame the CPU uploads one entry per line (the time window's
+// point range and the level of detail's tolerance) and records a fixed number of dispatches and
+// two indirect draws; it never reads anything back or waits, and its work does not grow with the
+// number of chunks:
 //
-//   phase 1  the chunks that were visible last frame are drawn;
-//   test     the pass's depth after phase 1, reduced on the GPU to the farthest depth per
-//            8x8-pixel tile (line_tile_depth.frag) and read back, hides every other chunk whose
-//            nearest possible depth lies behind every tile its screen rectangle touches;
-//   phase 2  the rest is drawn (a camera jump or a new pathlet shows here, never missing);
-//   then     the final depth decides which chunks phase 1 draws next frame.
+//   chunks   (line_cull_chunks.comp, one invocation a chunk) the chunk's piece of the window,
+//            its strip after the level of detail, the strip's box grown by the widest the line
+//            can be drawn, the frustum test, and phase 1 = the chunks visible last frame;
+//   scan     (line_cull_scan.comp) a prefix sum over the chunks in chunk order: where each
+//            drawn chunk's segments go, the draw command, the counts;
+//   emit     (line_cull_emit.comp) the segments as GL_LINES index pairs;
+//   phase 1  glDrawElementsIndirect: one draw (llvmpipe pays ~5 us a draw, so a command per
+//            chunk would cost more than the culling saves);
+//   pyramid  (line_depth_pyramid.comp) the pass's depth after phase 1 as the farthest depth
+//            per 4x4 tile, then 2x2 levels up to 1x1;
+//   test     (line_cull_test.comp) every other chunk whose box lies behind every texel it
+//            covers, at the finest level where that is at most 32 texels, is occluded; what the test does
+//            not hide (phase 1's chunks too) is next frame's phase 1;
+//   phase 2  scan, emit and draw of the chunks that became visible.
 //
-// Conservative by construction: a chunk's box is grown by the widest the line can be drawn
-// (half the width times the width hook's cap), so the tube's bulge towards the viewer is
-// inside it, and a box reaching behind the camera is never hidden. Culled chunks would have
-// failed the depth test everywhere; only the order of equal-depth draws can differ.
+// Conservative, as the unculled draw is the reference: a chunk's box holds every point its
+// strip draws (quads are clipped to the window inside the segments) grown by half the width
+// times the width hook's cap, and a box reaching behind the camera is never hidden; a hidden
+// chunk would have failed the depth test everywhere. The chunks' strips together are the
+// unculled draw's strips, each segment once (line_cull_chunks.comp), in the same order within
+// a phase, so OIT (every fragment counts) can be frustum-culled the same way.
+//
+// Counts (chunks drawn per phase, occluded, outside, segments) reach the CPU through a ring of
+// fenced copies read once the GPU is done, without waiting: on llvmpipe in the same frame, on
+// a GPU a frame or two late.
 #pragma once
 
+#include <pathlet/gpu_readback.hpp>
 #include <pathlet/gpu_scene.hpp>
+#include <pathlet/pass.hpp>
+#include <pathlet/shader.hpp>
 
-#include <chrono>
-
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace pathlet::lines {
@@ -26,55 +46,65 @@ namespace pathlet::lines {
 class ChunkCuller {
 public:
     struct Stats {
-        size_t chunks = 0;          // chunk pieces in the window
-        size_t frustum_culled = 0;  // outside the view
-        size_t phase1 = 0, phase2 = 0, occluded = 0;
-        double cpu_ms = 0;          // cutting, frustum and occlusion tests on the CPU, per frame
+        double chunks = 0;          // chunks with a segment in the window
+        double frustum_culled = 0;  // ... outside the view
+        double phase1 = 0, phase2 = 0, occluded = 0;
+        double segments = 0;        // segments drawn (after the level of detail)
+    };
+    // What a frame culls: the window's per-line ranges, the level of detail as LineLod::select
+    // takes it (lod_px <= 0 or no level of detail: every point), the camera, the width the
+    // boxes grow by.
+    struct Frame {
+        const GpuScene::Ranges* window = nullptr;
+        bool lod = false;
+        glm::vec3 eye{0};
+        float scale = 1, lod_px = 0;
+        bool perspective = true;
+        uint32_t max_skip = 0;  // LineLod::select's max_skip (0: none)
+        glm::mat4 view_proj{1.0f};
+        float grow = 0;
+        GLuint depth = 0;       // the pass's depth texture: two phases around the depth test; 0: one
+        glm::ivec2 depth_size{0};
     };
 
-    // Cuts the window's ranges into chunk pieces; those outside the frustum are dropped, those
-    // visible last frame form phase 1 (all of them without `occlusion`: one draw, no joins
-    // drawn twice, which matters where every fragment counts, as in OIT). `grow`: world units
-    // to widen every box by.
-    void split(const GpuScene::Ranges& window, const LineChunks& chunks, const glm::vec3* points,
-               const glm::mat4& view_proj, float grow, bool occlusion);
-    const GpuScene::Ranges& phase1() const { return phase1_; }
+    ChunkCuller() = default;
+    ChunkCuller(const ChunkCuller&) = delete;
+    ChunkCuller& operator=(const ChunkCuller&) = delete;
+    ~ChunkCuller();
 
-    // The farthest depth per kTile x kTile tile (rows bottom-up as GL's), `tiles` of them;
-    // null: no depth to test against.
-    struct TileDepth {
-        const float* farthest = nullptr;
-        glm::ivec2 tiles{0};
-    };
-    static constexpr int kTile = 8;  // = the tile of line_tile_depth.frag
+    // Draws the frame's chunks with `prog` (in use, the kit's uniforms set): phase 1, and with
+    // a depth texture the test and phase 2. GL state the pass set (buffer bindings, units,
+    // program) is as it was for each draw and afterwards.
+    void draw(PassContext& ctx, const ShaderProgram& prog, const Frame& f);
 
-    // Whether phase 1 drew anything (a depth buffer of nothing hides nothing).
-    bool drew_phase1() const { return !p1_.empty(); }
-    // After phase 1: the rest that the depth does not hide (all of it without depth).
-    void test_rest(TileDepth depth);
-    const GpuScene::Ranges& phase2() const { return phase2_; }
+    // The newest counts the GPU has finished (false: none yet), read without waiting.
+    bool stats(Stats& out);
 
-    // After phase 2: the chunks the final depth does not hide are next frame's phase 1.
-    void remember(TileDepth depth);
-
-    const Stats& stats() const { return stats_; }
+    // GLSL defines every culling stage needs (binding points, chunk and slot length, layouts).
+    static const std::vector<std::string>& defines();
 
 private:
-    struct Piece {
-        uint32_t chunk;
-        GLint first;
-        GLsizei count;
-        uint32_t line;
-        Bounds box;  // of the piece's points, grown (the chunk's when the piece is all of it)
-    };
-    bool hidden(const Bounds& box, TileDepth depth) const;
-    static void append(GpuScene::Ranges& r, const Piece& p);
+    void allocate(const GpuScene& scene);
+    void upload_lines(const GpuScene& scene, const Frame& f);
+    void bind_buffers(const GpuScene& scene) const;
+    void scan_and_emit(PassContext& ctx, uint32_t chunks, int phase);
+    void pyramid(PassContext& ctx, GLuint depth, glm::ivec2 size);
+    void test(PassContext& ctx, glm::ivec2 size, uint32_t chunks, bool remember);
+    void draw_phase(const GpuScene& scene, int phase) const;
+    void copy_counts();
 
-    glm::mat4 view_proj_{1.0f};
-    std::vector<Piece> p1_, rest_, drawn2_;
-    GpuScene::Ranges phase1_, phase2_;
-    std::vector<uint8_t> visible_;  // per chunk: drawn and not hidden last frame
-    Stats stats_;
+    const GpuScene* scene_ = nullptr;  // what the buffers were made for
+    const ShaderProgram* checked_ = nullptr;  // the chunk stage whose CullState layout was checked
+    size_t chunks_ = 0, segments_ = 0;
+    bool fresh_ = true;  // no visibility yet: phase 1 is empty
+    GLuint lines_ = 0, state_ = 0, slots_ = 0, indices_ = 0, header_ = 0;
+    size_t lines_capacity_ = 0;
+    std::vector<glm::uvec4> line_table_;
+    GLuint pyramid_ = 0;
+    glm::ivec2 pyramid_size_{0};
+    int pyramid_levels_ = 0;
+
+    std::unique_ptr<GpuReadback> counts_;  // the header's counts, read when the GPU is done
 };
 
 }  // namespace pathlet::lines

@@ -17,6 +17,7 @@ namespace {
 // geometry shader splits a drawn segment back into at most this many pieces (kMaxPieces in
 // line_quad.geom), so the level of detail joins no more data segments than that.
 constexpr uint32_t kWidthHookMaxSkip = 16;
+static_assert((kWidthHookMaxSkip & (kWidthHookMaxSkip - 1)) == 0, "the GPU culling keeps every max_skip-th point by a mask");
 
 // The uniform block LineKit of line_common.glsl, std140: written whole once per draw.
 struct KitBlock {
@@ -86,11 +87,9 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
 Drawer::Drawer() : culler_(std::make_unique<ChunkCuller>()) {}
 
 Drawer::~Drawer() {
-    if (tile_fbo_) glDeleteFramebuffers(1, &tile_fbo_);
-    if (tile_tex_) glDeleteTextures(1, &tile_tex_);
     if (block_) glDeleteBuffers(1, &block_);
     if (buffer_) glDeleteBuffers(1, &buffer_);
-    glDeleteBuffers(2, index_buffer_);  // 0s are ignored
+    if (index_buffer_) glDeleteBuffers(1, &index_buffer_);
 }
 
 namespace {
@@ -164,32 +163,31 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     segments_ = 0;
 }
 
-void Drawer::select(const GpuScene& scene, const GpuScene::Ranges& r, int slot) {
-    scene.lod().select(r.first, r.count, r.line, lod_.eye, lod_.scale, lod_.perspective, lod_.px, strips_[slot],
+void Drawer::select(const GpuScene& scene, const GpuScene::Ranges& r) {
+    scene.lod().select(r.first, r.count, r.line, lod_.eye, lod_.scale, lod_.perspective, lod_.px, strips_,
                        width_hooked_ ? kWidthHookMaxSkip : UINT32_MAX);
-    upload(index_buffer_[slot], index_capacity_[slot], strips_[slot].index.data(),
-           strips_[slot].index.size() * sizeof(GLuint));
+    upload(index_buffer_, index_capacity_, strips_.index.data(), strips_.index.size() * sizeof(GLuint));
 }
 
 void Drawer::prepare(PassContext& ctx, const ShaderProgram& prog) {
     begin(ctx, prog);
-    if (lod_on_) select(ctx.scene(), ranges_, 0);
-    segments_ = lod_on_ ? strips_[0].segments : ranges_.segments;
+    if (lod_on_) select(ctx.scene(), ranges_);
+    segments_ = lod_on_ ? strips_.segments : ranges_.segments;
 }
 
-void Drawer::draw_ranges(PassContext& ctx, const GpuScene::Ranges& r, int slot) {
+void Drawer::draw_ranges(PassContext& ctx, const GpuScene::Ranges& r) {
     if (r.first.empty()) return;
     if (!lod_on_) {
         ctx.scene().draw_lines(r);
         segments_ += r.segments;
         return;
     }
-    select(ctx.scene(), r, slot);
-    const LineLod::Strips& s = strips_[slot];
+    select(ctx.scene(), r);
+    const LineLod::Strips& s = strips_;
     segments_ += s.segments;
     if (s.count.empty()) return;
     // The scene's VAO is shared by every line pass: bind this drawer's indices each time.
-    glVertexArrayElementBuffer(ctx.scene().line_vao(), index_buffer_[slot]);
+    glVertexArrayElementBuffer(ctx.scene().line_vao(), index_buffer_);
     glBindVertexArray(ctx.scene().line_vao());
     glMultiDrawElements(GL_LINE_STRIP, s.count.data(), GL_UNSIGNED_INT, s.offset.data(), GLsizei(s.count.size()));
     glBindVertexArray(0);
@@ -212,39 +210,6 @@ GLuint bound_depth(glm::ivec2& size) {
 }
 }  // namespace
 
-// The pass's depth reduced to one farthest depth per tile on the GPU (reading the whole depth
-// buffer back cost ~50 ms at 720p on llvmpipe; this is a 160x90 float read), then the pass's
-// framebuffer, viewport and program as they were.
-void Drawer::tile_depth(PassContext& ctx, const ShaderProgram& prog, GLuint depth, glm::ivec2 size) {
-    const glm::ivec2 tiles = (size + ChunkCuller::kTile - 1) / ChunkCuller::kTile;
-    if (tiles != tiles_) {
-        if (tile_fbo_) glDeleteFramebuffers(1, &tile_fbo_);
-        if (tile_tex_) glDeleteTextures(1, &tile_tex_);
-        glCreateTextures(GL_TEXTURE_2D, 1, &tile_tex_);
-        glTextureStorage2D(tile_tex_, 1, GL_R32F, tiles.x, tiles.y);
-        glCreateFramebuffers(1, &tile_fbo_);
-        glNamedFramebufferTexture(tile_fbo_, GL_COLOR_ATTACHMENT0, tile_tex_, 0);
-        tiles_ = tiles;
-    }
-    GLint fbo = 0, viewport[4];
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    ShaderProgram& reduce = ctx.program({"fullscreen.vert", "line_tile_depth.frag"});
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, tile_fbo_);
-    glViewport(0, 0, tiles.x, tiles.y);
-    glDisable(GL_DEPTH_TEST);
-    reduce.use();
-    reduce.bind_texture("u_tile_source", depth);
-    ctx.draw_fullscreen();
-    farthest_.resize(size_t(tiles.x) * size_t(tiles.y));
-    glGetTextureImage(tile_tex_, 0, GL_RED, GL_FLOAT, GLsizei(farthest_.size() * sizeof(float)), farthest_.data());
-    reduce.bind_texture("u_tile_source", 0);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(fbo));
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glEnable(GL_DEPTH_TEST);
-    prog.use();
-}
-
 void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     begin(ctx, prog);
     glEnable(GL_DEPTH_TEST);
@@ -253,43 +218,43 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);  // quads face either way
     const GpuScene& scene = ctx.scene();
-    const bool cull = ctx.params().raw().value("cull", false) && !scene.chunks().chunks().empty();
+    // Culling pays from cull_min_segments data segments in the window; below, the plain draw.
+    const bool cull = ctx.params().raw().value("cull", false) && !scene.chunks().chunks().empty() &&
+                      ranges_.segments >= size_t(std::max(0, ctx.params().i("cull_min_segments")));
     if (!cull) {
-        draw_ranges(ctx, ranges_, 0);
+        draw_ranges(ctx, ranges_);
     } else {
-        // A box grows by the widest the line can be drawn: half the width, times the hook's cap.
-        const float grow = 0.5f * width_ * (width_hooked_ ? GpuScene::kMaxWidthHook : 1.0f);
         const Camera& cam = ctx.camera();
+        ChunkCuller::Frame f;
+        f.window = &ranges_;
+        f.lod = lod_on_;
+        f.eye = lod_.eye;
+        f.scale = lod_.scale;
+        f.lod_px = lod_.px;
+        f.perspective = lod_.perspective;
+        f.max_skip = width_hooked_ ? kWidthHookMaxSkip : 0;
+        f.view_proj = cam.proj * cam.view;
+        // A box grows by the widest the line can be drawn: half the width, times the hook's cap.
+        f.grow = 0.5f * width_ * (width_hooked_ ? GpuScene::kMaxWidthHook : 1.0f);
         // Only an opaque depth test hides anything: a pass that keeps every fragment (OIT's
-        // depth ALWAYS, or occlusion culling switched off), or a window too small to pay for
-        // the depth read-back, gets the frustum culling alone.
-        glm::ivec2 size(0);
-        const bool occlusion = occlusion_ && depth_func_ != GL_ALWAYS &&
-                               ranges_.segments >= size_t(std::max(0, ctx.params().i("cull_min_segments")));
-        const GLuint depth = occlusion ? bound_depth(size) : 0;
-        culler_->split(ranges_, scene.chunks(), scene.cpu().lines.position.data(), cam.proj * cam.view, grow, depth != 0);
-        draw_ranges(ctx, culler_->phase1(), 0);
-        const ChunkCuller::TileDepth none{};
-        const bool test = depth && culler_->drew_phase1();
-        if (test) tile_depth(ctx, prog, depth, size);
-        culler_->test_rest(test ? ChunkCuller::TileDepth{farthest_.data(), tiles_} : none);
-        draw_ranges(ctx, culler_->phase2(), 1);
-        if (depth) tile_depth(ctx, prog, depth, size);
-        culler_->remember(depth ? ChunkCuller::TileDepth{farthest_.data(), tiles_} : none);
-        const ChunkCuller::Stats& cs = culler_->stats();
-        ctx.stat("chunks", double(cs.chunks));
-        ctx.stat("chunks_frustum_culled", double(cs.frustum_culled));
-        ctx.stat("chunks_phase1", double(cs.phase1));
-        ctx.stat("chunks_phase2", double(cs.phase2));
-        ctx.stat("chunks_occluded", double(cs.occluded));
-        ctx.stat("cull_cpu_ms", cs.cpu_ms);
+        // depth ALWAYS, or occlusion culling switched off) gets the frustum test alone.
+        if (occlusion_ && depth_func_ != GL_ALWAYS) f.depth = bound_depth(f.depth_size);
+        culler_->draw(ctx, prog, f);
+        ChunkCuller::Stats cs;
+        if (culler_->stats(cs)) {  // the newest counts the GPU has finished, read without waiting
+            ctx.stat("chunks", cs.chunks);
+            ctx.stat("chunks_frustum_culled", cs.frustum_culled);
+            ctx.stat("chunks_phase1", cs.phase1);
+            ctx.stat("chunks_phase2", cs.phase2);
+            ctx.stat("chunks_occluded", cs.occluded);
+            ctx.stat("segments", cs.segments);
+        }
     }
-    ctx.stat("segments", double(segments_));
+    if (!cull) ctx.stat("segments", double(segments_));
     ctx.stat("segments_exact", double(ranges_.segments));  // before culling and the level of detail
     ctx.stat("lines", double(ranges_.first.size()));
     ctx.stat("line_width", double(width_));  // world units, before the width hook (tests turn it into pixels)
 }
-
 namespace {
 GLuint bound_framebuffer() {
     GLint fbo = 0;

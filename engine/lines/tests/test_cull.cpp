@@ -4,16 +4,19 @@
 // the previous frame's visibility missed). OIT (depth ALWAYS) is frustum-culled only.
 #include "frame_capture.hpp"
 #include "executor.hpp"
+#include "phantom/phantom.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 using namespace pathlet;
 
 namespace {
 
-Runtime& rt() { return test_runtime(); }
+// With the kit_probe fixture (ThePassKeepsItsOwnBindings); the first call makes the runtime.
+Runtime& rt() { return test_runtime({PATHLET_TEST_PLUGIN_DIR}); }
 const std::string kGraphs = std::string(PATHLET_SOURCE_DIR) + "/graphs/";
 
 // Eight layers of 41 parallel lines, each layer a closed sheet at the width the test draws
@@ -43,27 +46,37 @@ const Scene& layered_sheets() {
 
 struct CullRun {
     std::vector<Image> frames;
-    double occluded = 0, phase2 = 0, segments = 0;
+    double occluded = 0, phase1 = 0, phase2 = 0, frustum = 0, segments = 0;
 };
 
-// Every frame of `graph` over [t0, t1], orbiting, with the line pass's culling on or off.
-// min_segments: the pass's cull_min_segments (0: the occlusion test at any size; these scenes
-// are small).
-CullRun render_run(const std::string& graph, const std::string& pass, bool cull, const std::string& resource, double t0,
-               double t1, double orbit, double window = 2.0, int min_segments = 0) {
+// What a run renders besides the graph: the scene, the frames, the camera, more --sets.
+struct RunSpec {
+    const Scene* scene = nullptr;  // layered_sheets() when null
+    double t0 = 4, t1 = 5, orbit = 0, window = 2.0;
+    int min_segments = 0;          // the pass's cull_min_segments (0: cull at any size)
+    std::vector<std::string> sets = {};
+    std::string camera = {};       // a keyframed camera file; "" frames the data
+};
+
+// Every frame of `graph` over [t0, t1], with the line pass's culling on or off.
+CullRun render_run(const std::string& graph, const std::string& pass, bool cull, const std::string& resource,
+                   const RunSpec& spec) {
     RenderOptions o;
-    o.graph_path = kGraphs + graph;
+    o.graph_path = graph.find('/') == std::string::npos ? kGraphs + graph : graph;
     o.size = {192, 128};
     o.sets = {pass + ".cull=" + std::string(cull ? "true" : "false"),
-              pass + ".cull_min_segments=" + std::to_string(min_segments), "overlay=false", "line_width=0.3",
-              "window=" + std::to_string(window)};
-    o.time = {t0, t1, 0.5};
-    o.orbit_deg_per_s = orbit;
+              pass + ".cull_min_segments=" + std::to_string(spec.min_segments), "overlay=false",
+              "window=" + std::to_string(spec.window)};
+    if (!spec.scene) o.sets.push_back("line_width=0.3");
+    o.sets.insert(o.sets.end(), spec.sets.begin(), spec.sets.end());
+    o.time = {spec.t0, spec.t1, 0.5};
+    o.orbit_deg_per_s = spec.orbit;
+    o.camera_path = spec.camera;
     o.warmup = 0;
     o.write_images = false;
     o.quiet = true;
     CullRun run;
-    RenderResult r = render(rt(), layered_sheets(), o, [&](const Executor& e, size_t) {
+    RenderResult r = render(rt(), spec.scene ? *spec.scene : layered_sheets(), o, [&](const Executor& e, size_t) {
         run.frames.push_back(read_resource(e.texture(resource)));
     });
     auto stat = [&](const std::string& name) {  // mean per measured frame
@@ -72,9 +85,22 @@ CullRun render_run(const std::string& graph, const std::string& pass, bool cull,
         return 0.0;
     };
     run.occluded = stat("chunks_occluded");
+    run.phase1 = stat("chunks_phase1");
     run.phase2 = stat("chunks_phase2");
+    run.frustum = stat("chunks_frustum_culled");
     run.segments = stat("segments");
     return run;
+}
+CullRun render_run(const std::string& graph, const std::string& pass, bool cull, const std::string& resource, double t0,
+                   double t1, double orbit, double window = 2.0, int min_segments = 0) {
+    return render_run(graph, pass, cull, resource, {.t0 = t0, .t1 = t1, .orbit = orbit, .window = window, .min_segments = min_segments});
+}
+
+// The small phantom: curved lines, whose level of detail keeps some points of every chunk and
+// drops others, so a chunk's strip often ends in the next chunk.
+const Scene& small_phantom() {
+    static const Scene s = phantom::make_phantom(phantom::phantom_preset("small"));
+    return s;
 }
 
 // Largest RMS (0..255) between the runs' frames, over pixels either covers.
@@ -146,4 +172,76 @@ TEST(Cull, TransparencyIsNotOcclusionCulled) {
     const CullRun rest_off = render_run("variant2_oit.json", "fill_list", false, "final", 4, 5, 0, 0.0);
     EXPECT_EQ(rest_on.occluded, 0);
     EXPECT_EQ(worst_rms(rest_on, rest_off), 0.0);
+}
+
+TEST(Cull, TheChunksDrawTheUnculledSegmentsEachOnce) {
+    // fill_list (OIT: frustum culling only, every fragment counts, the default framing shows
+    // everything) on curved lines with the level of detail on: the chunks' strips, cut where
+    // the window and the chunks cut a line, draw exactly the unculled draw's segments, each
+    // once; with a width hook too (every 16th point kept).
+    for (double window : {1.0, 0.0})
+        for (const std::string hook : {"", "fade_width.geom"}) {
+            const RunSpec spec{.scene = &small_phantom(), .t0 = 2, .t1 = 3, .window = window,
+                               .sets = {"fill_list.width_hook=" + hook}};
+            const CullRun on = render_run("variant2_oit.json", "fill_list", true, "final", spec);
+            const CullRun off = render_run("variant2_oit.json", "fill_list", false, "final", spec);
+            SCOPED_TRACE("window " + std::to_string(window) + ", width hook '" + hook + "'");
+            EXPECT_GT(on.phase1, 0);
+            EXPECT_GT(on.segments, 100);
+            EXPECT_EQ(on.segments, off.segments) << "the same segments";
+            EXPECT_EQ(worst_rms(on, off), 0.0) << "the same lists";
+        }
+}
+
+TEST(Cull, WhatLiesOutsideTheViewIsNotDrawn) {
+    // A close-up of the sheets' left part: the chunks to the right are outside the frustum.
+    // (lod=0: at any level of detail a straight line is one segment, whose box is the line's.)
+    const std::string camera = ::testing::TempDir() + "cull_close_up.json";
+    {
+        std::ofstream f(camera);
+        f << R"({"keyframes": [{"time": 0, "eye": [2, 2, -6], "target": [2, 2, 0], "up": [0, 1, 0], "fov": 30}]})";
+    }
+    const RunSpec spec{.window = 0.0, .sets = {"gbuffer.lod=0"}, .camera = camera};
+    const CullRun on = render_run("variant1_lineao.json", "gbuffer", true, "final", spec);
+    const CullRun off = render_run("variant1_lineao.json", "gbuffer", false, "final", spec);
+    EXPECT_GT(on.frustum, 100) << "the right part of every line is out of view";
+    EXPECT_LT(on.segments, 0.5 * off.segments);
+    EXPECT_EQ(worst_rms(on, off), 0.0);
+}
+
+TEST(Cull, ThePassKeepsItsOwnBindings) {
+    // The kit_probe fixture colours its lines from its own storage buffer (binding point 0)
+    // and texture (unit 0), which the culling's compute stages also use between the pass's
+    // draws: every line pixel must still be (0.25, 0.5, 0), culled or not.
+    auto run = [&](bool cull) {
+        RenderOptions o;
+        o.graph_path = std::string(PATHLET_SOURCE_DIR) + "/engine/lines/tests/graphs/kit_probe_depth.json";
+        o.size = {192, 128};
+        o.sets = {"probe.probe=bound", "probe.cull=" + std::string(cull ? "true" : "false"), "probe.cull_min_segments=0",
+                  "window=0", "line_width=0.3"};
+        o.time = {4, 5, 0.5};
+        o.warmup = 0;
+        o.write_images = false;
+        o.quiet = true;
+        CullRun run;
+        RenderResult r = render(rt(), layered_sheets(), o,
+                                [&](const Executor& e, size_t) { run.frames.push_back(read_resource(e.texture("color"))); });
+        for (const auto& p : r.profiler.passes())
+            if (p.name == "probe" && p.stats.count("chunks_occluded")) run.occluded = p.stats.at("chunks_occluded");
+        return run;
+    };
+    const CullRun on = run(true), off = run(false);
+    EXPECT_GT(on.occluded, 100) << "the culling ran, depth test and all";
+    EXPECT_EQ(worst_rms(on, off), 0.0);
+    size_t covered = 0, wrong = 0;
+    for (const Image& img : on.frames)
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                if (img.at(x, y, 3) < 0.5f) continue;
+                ++covered;
+                wrong += std::fabs(img.at(x, y, 0) - 0.25f) > 0.01f || std::fabs(img.at(x, y, 1) - 0.5f) > 0.01f ||
+                         img.at(x, y, 2) > 0.01f;
+            }
+    EXPECT_GT(covered, 1000u);
+    EXPECT_EQ(wrong, 0u) << "pixels coloured from another buffer or texture";
 }

@@ -1,8 +1,8 @@
 #include <pathlet/gpu_scene.hpp>
 
 #include <algorithm>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 
 namespace pathlet {
 
@@ -20,6 +20,25 @@ static_assert(sizeof(LineVertex) == GpuScene::kPointFloats * sizeof(float));
 static_assert(offsetof(LineVertex, position) == GpuScene::kPositionFloat * sizeof(float));
 static_assert(offsetof(LineVertex, time) == GpuScene::kTimeFloat * sizeof(float));
 
+// A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last; uint line; uvec3 pad;} lays it out.
+struct GpuChunk {
+    glm::vec3 lo;
+    uint32_t first;
+    glm::vec3 hi;
+    uint32_t last;
+    uint32_t line, pad[3];
+};
+static_assert(sizeof(GpuChunk) == GpuScene::kGpuChunkBytes);
+
+// An immutable buffer with `data` (at least 4 bytes: a buffer of size 0 cannot be bound).
+GLuint immutable_buffer(const void* data, size_t bytes) {
+    GLuint b = 0;
+    glCreateBuffers(1, &b);
+    const uint32_t zero = 0;
+    glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, sizeof zero)), bytes ? data : &zero, 0);
+    return b;
+}
+
 glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
     float l = glm::length(v);
     return l > 1e-12f ? v / l : fallback;
@@ -32,8 +51,11 @@ void GpuScene::release() {
     if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
     if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
     if (points_tex_) glDeleteTextures(1, &points_tex_);
+    if (chunk_buffer_) glDeleteBuffers(1, &chunk_buffer_);
+    if (lod_buffer_) glDeleteBuffers(1, &lod_buffer_);
+    if (position_buffer_) glDeleteBuffers(1, &position_buffer_);
     mesh_.release();
-    line_vao_ = line_vbo_ = points_tex_ = 0;
+    line_vao_ = line_vbo_ = points_tex_ = chunk_buffer_ = lod_buffer_ = position_buffer_ = 0;
 }
 
 void GpuMesh::release() {
@@ -127,6 +149,19 @@ void GpuScene::upload(const Scene& scene) {
     }
     lod_.build(pl, smax_ - smin_);
     chunks_.build(pl);
+    {
+        std::vector<GpuChunk> gc;
+        gc.reserve(chunks_.chunks().size());
+        for (uint32_t line = 0; line < uint32_t(pl.lines.size()); ++line)
+            for (uint32_t k = chunks_.begin(line); k < chunks_.end(line); ++k) {
+                const LineChunks::Chunk& c = chunks_.chunks()[k];
+                gc.push_back({c.box.lo, c.first, c.box.hi, c.last, line, {0, 0, 0}});
+            }
+        chunk_buffer_ = immutable_buffer(gc.data(), gc.size() * sizeof(GpuChunk));
+        lod_buffer_ = immutable_buffer(lod_.keep().data(), lod_.keep().size() * sizeof(float));
+        static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+        position_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
+    }
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
                          v.empty() ? nullptr : v.data(), 0);

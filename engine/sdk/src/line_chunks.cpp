@@ -9,6 +9,7 @@ namespace pathlet {
 void LineChunks::build(const Pathlines& pl) {
     chunks_.clear();
     line_begin_.assign(1, 0);
+    segments_ = 0;
     constexpr float inf = std::numeric_limits<float>::infinity();
     for (const LineRange& r : pl.lines) {
         if (r.count >= 2) {
@@ -24,6 +25,7 @@ void LineChunks::build(const Pathlines& pl) {
                     c.box.hi = glm::max(c.box.hi, p);
                 }
                 chunks_.push_back(c);
+                segments_ += c.last - c.first;
             }
         }
         line_begin_.push_back(uint32_t(chunks_.size()));

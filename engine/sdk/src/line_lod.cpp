@@ -24,6 +24,8 @@ void LineLod::build(const Pathlines& pl, float speed_range) {
     const size_t n = pl.position.size();
     keep_.assign(n, kInf);
     line_box_.assign(pl.lines.size(), Bounds{});
+    line_first_.resize(pl.lines.size());
+    for (size_t li = 0; li < pl.lines.size(); ++li) line_first_[li] = pl.lines[li].first;
     const float inv_range = speed_range > 0.0f ? 1.0f / speed_range : 0.0f;
     std::vector<float> speed(n, 0.0f);
     for (size_t i = 0; i < n && i < pl.velocity.size(); ++i) speed[i] = glm::length(pl.velocity[i]);
@@ -82,6 +84,15 @@ void LineLod::build(const Pathlines& pl, float speed_range) {
     }
 }
 
+float LineLod::tolerance(uint32_t line, glm::vec3 eye, float scale, bool perspective, float lod_px) const {
+    const float d = perspective ? distance_to_box(eye, line_box_[line]) : 1.0f;
+    // A line without a finite point has no box (d = inf); a bad camera gives NaN. Keep eps
+    // finite and >= 0 so the line's ends (tolerance +inf) always stop the scans of select().
+    float eps = lod_px * scale * d;
+    if (!(eps >= 0.0f)) eps = 0.0f;
+    return std::min(eps, std::numeric_limits<float>::max());
+}
+
 void LineLod::select(const std::vector<GLint>& first, const std::vector<GLsizei>& count,
                      const std::vector<uint32_t>& line, glm::vec3 eye, float scale, bool perspective, float lod_px,
                      Strips& out, uint32_t max_skip) const {
@@ -91,23 +102,22 @@ void LineLod::select(const std::vector<GLint>& first, const std::vector<GLsizei>
     out.offset.clear();
     out.segments = 0;
     for (size_t i = 0; i < first.size(); ++i) {
-        const float d = perspective ? distance_to_box(eye, line_box_[line[i]]) : 1.0f;
-        // A line without a finite point has no box (d = inf); a bad camera gives NaN. Keep eps
-        // finite and >= 0 so the line's ends (tolerance +inf) always stop the scans below.
-        float eps = lod_px * scale * d;
-        if (!(eps >= 0.0f)) eps = 0.0f;
-        eps = std::min(eps, std::numeric_limits<float>::max());
         // Points at 0 tolerance (exactly on the chord) may go even at eps = 0 (camera inside
         // the box): they add nothing to the picture.
+        const float eps = tolerance(line[i], eye, scale, perspective, lod_px);
         const uint32_t f = uint32_t(first[i]), l = uint32_t(first[i] + count[i] - 1);
+        // The line's first point: every max_skip-th point from it is kept (line_cull_chunks.comp
+        // has the same rule).
+        const uint32_t line_first = line_first_[line[i]];
+        auto kept = [&](uint32_t j) { return keep_[j] > eps || (j - line_first) % max_skip == 0; };
         // The kept points around [f, l]; line ends are always kept (tolerance +inf).
         uint32_t a = f, b = l;
-        while (!(keep_[a] > eps) && f - a < max_skip) --a;
-        while (!(keep_[b] > eps) && b - l < max_skip) ++b;
+        while (!kept(a)) --a;
+        while (!kept(b)) ++b;
         const size_t start = out.index.size();
         out.index.push_back(a);
-        for (uint32_t j = a + 1, last = a; j < b; ++j)
-            if (keep_[j] > eps || j - last >= max_skip) out.index.push_back(j), last = j;
+        for (uint32_t j = a + 1; j < b; ++j)
+            if (kept(j)) out.index.push_back(j);
         out.index.push_back(b);
         const size_t n = out.index.size() - start;
         out.count.push_back(GLsizei(n));

@@ -98,12 +98,17 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
                        const std::vector<std::string>& defines = {});
 
 class ChunkCuller;
+// GPU memory a culling line pass keeps for a scene of `chunks` chunks and `segments` segments:
+// per chunk its state and strip, and GL_LINES indices for every segment (what `pathlet graph
+// --plan` reports).
+size_t culling_bytes(size_t chunks, size_t segments);
 
 // Draws the pathlets of the current time window: sets the kit's uniforms on `prog` (in use),
 // uploads the per-pathlet buffer, draws with depth testing, reports the segment count. With the
-// pass's `cull` parameter (kit parameter, on by default) only the chunks that can be seen:
-// frustum culling, and with a depth-tested framebuffer two-phase occlusion culling against the
-// pass's own depth (engine/lines/src/chunk_culler.hpp); the picture is the same.
+// pass's `cull` parameter (kit parameter, on by default) and at least `cull_min_segments` data
+// segments in the window, the chunks are culled on the GPU: frustum culling, and with a
+// depth-tested framebuffer two-phase occlusion culling against the pass's own depth, drawn
+// from GPU-written commands (engine/lines/src/chunk_culler.hpp); the picture is the same.
 class Drawer {
 public:
     Drawer();
@@ -115,7 +120,7 @@ public:
     // ranges() (no culling), with the level of detail's strips in strips().
     void prepare(PassContext& ctx, const ShaderProgram& prog);
     const GpuScene::Ranges& ranges() const { return ranges_; }
-    const LineLod::Strips& strips() const { return strips_[0]; }
+    const LineLod::Strips& strips() const { return strips_; }
     // Depth test of the draw (default GL_LEQUAL). GL_ALWAYS keeps every fragment, e.g. for OIT,
     // while a bound depth target still records where fragments landed (and nothing is
     // occlusion-culled).
@@ -124,15 +129,14 @@ public:
     // not all it writes (fill_list's lists beside its G-buffer: a hidden fragment is still a node).
     void set_occlusion_culling(bool on) { occlusion_ = on; }
 
-    // Segments drawn in the last frame (after culling and the level of detail).
+    // Segments the last unculled frame drew (after the level of detail); a culled frame's count
+    // is on the GPU and reaches the pass's `segments` stat when the GPU is done.
     size_t segments() const { return segments_; }
 
 private:
     void begin(PassContext& ctx, const ShaderProgram& prog);
-    void select(const GpuScene& scene, const GpuScene::Ranges& r, int slot);
-    void draw_ranges(PassContext& ctx, const GpuScene::Ranges& r, int slot);
-    // The pass's depth as the farthest depth per tile (into farthest_, tiles_), on the GPU.
-    void tile_depth(PassContext& ctx, const ShaderProgram& prog, GLuint depth, glm::ivec2 size);
+    void select(const GpuScene& scene, const GpuScene::Ranges& r);
+    void draw_ranges(PassContext& ctx, const GpuScene::Ranges& r);
 
     GLenum depth_func_ = GL_LEQUAL;
     bool occlusion_ = true;
@@ -143,9 +147,9 @@ private:
         bool perspective = true;
         glm::vec3 eye{0};
     } lod_;
-    LineLod::Strips strips_[2];  // phase 1 and phase 2 (uploaded to their own index buffers)
-    GLuint index_buffer_[2] = {0, 0};
-    size_t index_capacity_[2] = {0, 0};
+    LineLod::Strips strips_;  // the unculled draw's (culling selects on the GPU)
+    GLuint index_buffer_ = 0;
+    size_t index_capacity_ = 0;
     size_t segments_ = 0;
     float width_ = 0;
     std::vector<glm::vec4> pathlets_;
@@ -155,9 +159,6 @@ private:
     GLuint block_ = 0;  // the LineKit uniform block's buffer
     float typical_window_ = -1.0f, typical_length_ = 1.0f;  // cached per window length
     std::unique_ptr<ChunkCuller> culler_;
-    GLuint tile_tex_ = 0, tile_fbo_ = 0;  // the farthest depth per tile, for the culler
-    glm::ivec2 tiles_{0};
-    std::vector<float> farthest_;
 };
 
 // The unit of the kit's arc-length measures (u_typical_length in every kit program): a typical

@@ -51,6 +51,16 @@ public:
     // time at i * kPointFloats + kTimeFloat. Owned by the scene; bind it to a sampler of yours.
     GLuint points_texture() const { return points_tex_; }
     static constexpr int kPointFloats = 12, kPositionFloat = 0, kTimeFloat = 3;
+    // The chunks, the level of detail and the points on the GPU, for the line kit's culling
+    // (uploaded with the scene): per chunk {vec3 lo; uint first; vec3 hi; uint last; uint line;
+    // 3 x uint} (std430, kGpuChunkBytes: its box, first and last point, line); per point its
+    // LineLod tolerance (float) and its position (3 floats, packed). Apart from the vertices,
+    // which at 48 bytes a point would pass the 128 MiB a storage block may be limited to (as on
+    // llvmpipe) at 2.8M points: these reach it at 2.8M chunks and 11M points.
+    static constexpr size_t kGpuChunkBytes = 48;
+    GLuint chunk_buffer() const { return chunk_buffer_; }
+    GLuint lod_buffer() const { return lod_buffer_; }
+    GLuint position_buffer() const { return position_buffer_; }
     GLuint mesh_vao() const { return mesh_.vao(); }  // location 0 position, 1 normal; indexed
     GLsizei mesh_index_count() const { return mesh_.index_count(); }
 
@@ -93,6 +103,7 @@ public:
     // width hook, which is clamped to kMaxWidthHook): lines::screen_rect pads by it, so post
     // passes that skip the border never cut a wide line. Noted by lines::Drawer.
     static constexpr size_t kLineVertexBytes = 48;  // GPU memory per line point (the vertex buffer)
+    static constexpr size_t kPointGpuBytes = kLineVertexBytes + 4 * sizeof(float);  // with its LOD tolerance and position for culling
     static constexpr float kMaxWidthHook = 4.0f;  // line_quad.geom's clamp (u_max_width_hook)
     void note_line_width(float w) const { widest_line_ = std::max(widest_line_, w); }
     float widest_line() const { return widest_line_; }
@@ -109,7 +120,7 @@ private:
     std::vector<float> arc_;  // per point, arc length from its line's first point
     LineLod lod_;
     LineChunks chunks_;
-    GLuint line_vao_ = 0, line_vbo_ = 0, points_tex_ = 0;
+    GLuint line_vao_ = 0, line_vbo_ = 0, points_tex_ = 0, chunk_buffer_ = 0, lod_buffer_ = 0, position_buffer_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;

@@ -13,7 +13,10 @@ namespace pathlet {
 
 class LineChunks {
 public:
-    static constexpr uint32_t kSegments = 32;
+    // Short chunks have tight boxes: on the study phantom with every line at 720p, 8 segments
+    // leave 62k of 234k segments to draw after occlusion culling, 16 leave 78k, 32 leave 104k
+    // (4 leave 53k, but the per-chunk work then costs more than it saves).
+    static constexpr uint32_t kSegments = 8;
 
     struct Chunk {
         Bounds box;          // of the chunk's finite points (invalid when it has none)
@@ -27,10 +30,12 @@ public:
     uint32_t begin(uint32_t line) const { return line_begin_[line]; }
     uint32_t end(uint32_t line) const { return line_begin_[line + 1]; }
     size_t bytes() const { return chunks_.size() * sizeof(Chunk) + line_begin_.size() * sizeof(uint32_t); }
+    size_t segments() const { return segments_; }  // of all chunks
 
 private:
     std::vector<Chunk> chunks_;
     std::vector<uint32_t> line_begin_{0};  // per line, plus one past the end
+    size_t segments_ = 0;
 };
 
 }  // namespace pathlet

@@ -40,16 +40,24 @@ public:
     // the window's ends. world_per_px(d) = scale * (perspective ? d : 1) with d the distance
     // from `eye` to the line's bounding box; lod_px: the tolerance in pixels.
     // max_skip: no drawn segment stands for more data segments than this (a width hook's
-    // geometry shader splits a segment back into that many pieces, see line_quad.geom).
+    // geometry shader splits a segment back into that many pieces, see line_quad.geom): every
+    // max_skip-th point of a line, counted from its first, is kept. A per-point rule, so any
+    // part of a line selects what the whole line would (the kit's GPU culling draws chunks).
     void select(const std::vector<GLint>& first, const std::vector<GLsizei>& count, const std::vector<uint32_t>& line,
                 glm::vec3 eye, float scale, bool perspective, float lod_px, Strips& out,
                 uint32_t max_skip = UINT32_MAX) const;
+    // The tolerance of line `line` in world units this frame (select()'s rule): points whose
+    // tolerance exceeds it are kept. Finite and >= 0.
+    float tolerance(uint32_t line, glm::vec3 eye, float scale, bool perspective, float lod_px) const;
+    // Per point, the tolerance below which it is kept (what tolerance() is compared with).
+    const std::vector<float>& keep() const { return keep_; }
 
 private:
     // Per point: the simplification tolerance (world units) below which the point is kept;
     // +inf at line ends and where dropping the point would change its colour.
     std::vector<float> keep_;
     std::vector<Bounds> line_box_;  // per line
+    std::vector<uint32_t> line_first_;  // per line, its first point
 };
 
 }  // namespace pathlet
