@@ -54,6 +54,18 @@ void check_block_layout(const ShaderProgram& prog) {
                               " in lines::Drawer; line_common.glsl and line_drawer.cpp disagree");
     }
 }
+// Whether a program has an active storage block at `binding`.
+bool reads_storage_binding(const ShaderProgram& prog, GLuint binding) {
+    GLint blocks = 0;
+    glGetProgramInterfaceiv(prog.id(), GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &blocks);
+    for (GLint i = 0; i < blocks; ++i) {
+        const GLenum prop = GL_BUFFER_BINDING;
+        GLint at = -1;
+        glGetProgramResourceiv(prog.id(), GL_SHADER_STORAGE_BLOCK, GLuint(i), 1, &prop, 1, nullptr, &at);
+        if (at == GLint(binding)) return true;
+    }
+    return false;
+}
 }  // namespace
 
 Hooks hooks(const PassContext& ctx) {
@@ -74,6 +86,7 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     std::vector<std::string> all = defines;
     all.push_back("LINE_KIT_BINDING " + std::to_string(kKitBlockBinding));
     all.push_back("LINE_PATHLET_BINDING " + std::to_string(kPathletBinding));
+    all.push_back("LINE_HOOK_BUFFER_BINDING " + std::to_string(kHookBufferBinding));
     if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
     // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both
     // sides of every branch, so a uniform switch costs all four maps per fragment. setup()
@@ -83,6 +96,9 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
     ShaderProgram& prog = ctx.program(files, all);
     check_block_layout(prog);
+    if (!ctx.connected("hook_buffer") && reads_storage_binding(prog, kHookBufferBinding))
+        throw ShaderError("a hook of " + ctx.pass_name() + " reads the storage block at LINE_HOOK_BUFFER_BINDING, but "
+                          "the pass's input 'hook_buffer' is not connected (it would read whatever was bound last)");
     return prog;
 }
 
@@ -122,6 +138,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     if (pathlets_.empty()) pathlets_.push_back(glm::vec4(0.0f));  // a buffer of size 0 cannot be bound
     upload(buffer_, capacity_, pathlets_.data(), pathlets_.size() * sizeof(glm::vec4));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPathletBinding, buffer_);
+    if (ctx.connected("hook_buffer")) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHookBufferBinding, ctx.buffer("hook_buffer").id);
 
     // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
     // or scale (orthographic), for the pass's output height.

@@ -1,0 +1,22 @@
+// The opacity that opacity optimization found (opacity_blend's `opacity`), as a colour or width
+// hook reads it: the pass's `hook_buffer` must be connected to that buffer (the line kit refuses
+// a hook that reads the block without it). Included by optimized_fade.glsl and
+// optimized_core.glsl; include it in a hook of your own to combine it with other rules.
+#ifndef PATHLET_OO_OPACITY_GLSL
+#define PATHLET_OO_OPACITY_GLSL
+
+#include "line_hooks.glsl"
+#include "opacity_optimization.glsl"
+
+layout(std430, binding = LINE_HOOK_BUFFER_BINDING) readonly buffer OoOpacity { uint oo_opacity[]; };
+
+// Linear in arc length between the centres of the point's segments; 1 on a line the buffer
+// does not know (another data set's ids).
+float optimized_opacity(LinePoint p) {
+    if (uint(p.line_id) >= oo_lines(oo_opacity)) return 1.0;
+    OoPair s = oo_pair_of(oo_line(oo_opacity, p.line_id), p.arc);
+    uint at = oo_per_segment(oo_opacity);
+    return mix(uintBitsToFloat(oo_opacity[at + s.a]), uintBitsToFloat(oo_opacity[at + s.b]), s.t);
+}
+
+#endif
