@@ -10,6 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
+#include <sys/wait.h>
+
 using namespace pathlet;
 using namespace pathlet::quality;
 
@@ -121,4 +126,24 @@ TEST(Transparency, FewerThanTwoFramesIsAnError) {
     EXPECT_NO_THROW(check_transparency_options(o));
     o.focus_share = 1.5;
     EXPECT_THROW(check_transparency_options(o), std::invalid_argument);
+}
+
+TEST(Transparency, TheCommandRefusesAnExperimentWithoutTransparencyAndNamesABadFile) {
+    const std::string dir = test_scratch_dir("pathlet_transparency");
+    const std::string log = dir + "/out.txt";
+    auto exit_code = [&](const std::string& args) {
+        const int status = std::system((std::string(PATHLET_CLI) + " quality " + args + " > " + log + " 2>&1").c_str());
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    auto output = [&] {
+        std::ifstream in(log);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_EQ(exit_code("--experiment " + kSrc + "/graphs/experiments/transparency.json"), 2) << output();
+    EXPECT_NE(output().find("--transparency"), std::string::npos) << output();
+    const std::string bad = dir + "/bad.json";
+    std::ofstream(bad) << R"({"graphs": [{"graph": "no_such_graph"}]})";
+    EXPECT_NE(exit_code("--transparency --experiment " + bad), 0);
+    EXPECT_NE(output().find("bad.json"), std::string::npos) << output();
+    EXPECT_NE(output().find("no_such_graph"), std::string::npos) << output();
 }
