@@ -5,12 +5,13 @@
 //          x colour (packUnorm4x8, straight alpha), y linear depth (float bits),
 //          z next node (OIT_END ends the list), w line id (ties: deterministic order)
 //   counter: std430 buffer, the number of nodes appended this frame (may exceed capacity:
-//          then the frame overflowed and fill_list re-renders it with a larger buffer)
+//          then the frame overflowed and fill_list re-renders it with a larger buffer); a
+//          buffer pin, so its binding point is the engine's (COUNTER_BINDING for pin "counter")
 #ifndef PATHLET_OIT_LIST_GLSL
 #define PATHLET_OIT_LIST_GLSL
 
-// OIT_END and OIT_COUNTER_BINDING come from C++ (pathlet::oit::defines(), pathlet/oit.hpp).
-#if !defined(OIT_END) || !defined(OIT_COUNTER_BINDING)
+// OIT_END comes from C++ (pathlet::oit::defines(), pathlet/oit.hpp).
+#if !defined(OIT_END)
 #error "oit_list.glsl: make the program with pathlet::oit::defines()"
 #endif
 

@@ -8,7 +8,7 @@
 #include "line_hooks.glsl"
 #include "opacity_optimization.glsl"
 
-layout(std430, binding = LINE_HOOK_BUFFER_BINDING) readonly buffer OoOpacity { uint oo_opacity[]; };
+layout(std430, binding = HOOK_BUFFER_BINDING) readonly buffer OoOpacity { uint oo_opacity[]; };
 
 // Linear in arc length between the centres of the point's segments; 1 on a line the buffer
 // does not know (another data set's ids).

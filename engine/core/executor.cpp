@@ -7,6 +7,9 @@
 #include "plugin_host.hpp"
 #include "profiler/profiler.hpp"
 
+#include <pathlet/buffer_texture.hpp>
+#include <pathlet/gl_limits.hpp>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -24,10 +27,14 @@ struct PassContextImpl {
     Params params;
     std::vector<std::string> shader_dirs;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs;
-    // Binding by declaration: texture pin -> unit (declaration order), and the pins some program
-    // of the pass reads as u_<pin> (bound before each execute()).
-    std::map<std::string, int> pin_unit;
+    // Binding by declaration, each kind in its own range from 0 (pathlet/gl_limits.hpp): a texture
+    // pin read as a sampler gets a texture unit, one read as an image an image unit, both on first
+    // sight in a program of the pass; other samplers and images of the pass's programs the next
+    // ones. Buffer pins get storage binding points in declaration order (<PIN>_BINDING in GLSL).
+    std::map<std::string, int> sampler_unit, image_unit, buffer_binding;
+    int samplers = 0, images = 0;
     std::set<std::string> sampled_pins, image_pins;
+    std::map<std::pair<std::string, GLenum>, BufferTexture> buffer_views;  // buffer_texture()
 
     const CompiledPass& pass() const { return exec->cg_.passes[size_t(index)]; }
     const Binding* binding(const std::string& pin) const {
@@ -82,6 +89,9 @@ Buffer PassContext::grow_buffer(const std::string& pin, size_t bytes) {
     glObjectLabel(GL_BUFFER, id, -1, label.c_str());
     glDeleteBuffers(1, &ph.buf.id);
     ph.buf = {id, bytes};
+    // The pin's binding point now holds the new store (bind_pins bound the old one).
+    auto at = impl_->buffer_binding.find(pin);
+    if (at != impl_->buffer_binding.end()) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(at->second), id);
     return ph.buf;
 }
 
@@ -94,23 +104,39 @@ ShaderProgram& PassContext::program(const std::vector<std::string>& files, const
     for (const auto& d : defines) key += d + "|";
     auto& slot = impl_->programs[key];
     if (!slot) {
-        auto prog = std::make_unique<ShaderProgram>(ShaderProgram::from_files(files, impl_->shader_dirs, defines));
-        // u_<pin> takes the pin's unit; other samplers and images the units after the pins.
-        int next = int(impl_->pin_unit.size());
+        std::vector<std::string> all = defines;
+        for (const auto& [pin, binding] : impl_->buffer_binding) all.push_back(binding_define(pin) + " " + std::to_string(binding));
+        auto prog = std::make_unique<ShaderProgram>(ShaderProgram::from_files(files, impl_->shader_dirs, all));
         for (const auto& u : std::vector<ShaderProgram::Uniform>(prog->uniforms())) {
             if (!u.opaque) continue;
-            auto it = u.name.rfind("u_", 0) == 0 ? impl_->pin_unit.find(u.name.substr(2)) : impl_->pin_unit.end();
-            if (it != impl_->pin_unit.end()) {
-                prog->set_unit(u.name, it->second);
-                (u.image ? impl_->image_pins : impl_->sampled_pins).insert(it->first);
+            const std::string pin = u.name.rfind("u_", 0) == 0 ? u.name.substr(2) : "";
+            const PinDecl* decl = pin.empty() ? nullptr : impl_->pass().type->pin(pin);
+            const bool is_pin = decl && decl->kind == PinKind::Texture;
+            std::map<std::string, int>& units = u.image ? impl_->image_unit : impl_->sampler_unit;
+            int unit = 0;
+            if (is_pin && units.count(pin)) {
+                unit = units[pin];
             } else {
-                prog->set_unit(u.name, next++);
+                unit = impl_->exec->take_units(*impl_, u.image, u.size, u.name);
+                if (is_pin) units[pin] = unit;
             }
+            if (is_pin) (u.image ? impl_->image_pins : impl_->sampled_pins).insert(pin);
+            prog->set_unit(u.name, unit);
         }
+        // Uniform blocks keep the program's own numbering from 0 (ShaderProgram::block_binding).
+        impl_->exec->max_blocks_ = std::max(impl_->exec->max_blocks_, int(prog->uniform_blocks().size()));
         bind_params(*prog);
         slot = std::move(prog);
     }
     return *slot;
+}
+
+int PassContext::buffer_binding(const std::string& pin) const {
+    auto it = impl_->buffer_binding.find(pin);
+    if (it == impl_->buffer_binding.end())
+        throw PassError("pass '" + impl_->pass().name + "' asked for the binding point of '" + pin +
+                        "', which is not one of its buffer pins");
+    return it->second;
 }
 
 namespace {
@@ -181,6 +207,10 @@ void PassContext::bind_params(const ShaderProgram& prog) const {
     }
 }
 
+GLuint PassContext::buffer_texture(const std::string& pin, GLenum format) {
+    return impl_->buffer_views[{pin, format}].of(buffer(pin), format);
+}
+
 void PassContext::bind_framebuffer(const std::vector<std::string>& color_pins, const std::string& depth_pin, int mip) {
     std::vector<GLuint> color;
     int w = 0, h = 0;
@@ -198,6 +228,10 @@ void PassContext::bind_framebuffer(const std::vector<std::string>& color_pins, c
         Texture t = texture(depth_pin);
         depth = t.id;
         take_size(t);
+    }
+    if (color.empty() && !depth) {  // no attachments: the raster has the output's size
+        w = std::max(1, output_size().x >> mip);
+        h = std::max(1, output_size().y >> mip);
     }
     GLuint fbo = impl_->exec->framebuffer(color, depth, mip, impl_->pass().name);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -312,6 +346,10 @@ GLuint Executor::framebuffer(const std::vector<GLuint>& color, GLuint depth, int
         draw.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
     }
     if (depth) glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, mip);
+    if (color.empty() && !depth) {
+        glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, std::max(1, cg_.output_size.x >> mip));
+        glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, std::max(1, cg_.output_size.y >> mip));
+    }
     if (draw.empty())
         glNamedFramebufferDrawBuffer(fbo, GL_NONE);
     else
@@ -372,10 +410,17 @@ void Executor::setup() {
         impl->params = Params(cp.name, cp.params, cp.type);
         impl->shader_dirs = shader_dirs_for(*cp.type);
         for (const PinDecl& pin : cp.type->pins)
-            if (pin.kind == PinKind::Texture) impl->pin_unit.emplace(pin.name, int(impl->pin_unit.size()));
+            if (pin.kind == PinKind::Buffer) impl->buffer_binding.emplace(pin.name, int(impl->buffer_binding.size()));
         std::unique_ptr<Pass> pass;
         gl_.set_scope(cp.name);
         try {
+            const GlLimits& limits = gl_limits();
+            const int bindings = limits.get(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);
+            if (int(impl->buffer_binding.size()) > bindings)
+                throw PassError("its " + std::to_string(impl->buffer_binding.size()) +
+                                " buffer pins need as many storage-buffer binding points; this context has " +
+                                std::to_string(bindings) + limits.source(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS));
+            max_bindings_ = std::max(max_bindings_, int(impl->buffer_binding.size()));
             pass = cp.type->create();
             if (!pass) throw PassError("its factory returned nothing");
             PassContext ctx(impl.get());
@@ -484,22 +529,43 @@ void Executor::reset_gl_state() {
     glDepthMask(GL_TRUE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBlendFunc(GL_ONE, GL_ZERO);
-    glBindTextures(0, 16, nullptr);  // one call: whatever units the last pass used
-    glBindImageTextures(0, 8, nullptr);
+    // Whatever units and binding points any pass was given (none beyond the context's limits).
+    if (max_samplers_) glBindTextures(0, max_samplers_, nullptr);
+    if (max_images_) glBindImageTextures(0, max_images_, nullptr);
+    if (max_bindings_) glBindBuffersBase(GL_SHADER_STORAGE_BUFFER, 0, max_bindings_, nullptr);
+    if (max_blocks_) glBindBuffersBase(GL_UNIFORM_BUFFER, 0, max_blocks_, nullptr);
 }
 
-// Texture pins that a program of the pass reads as u_<pin>, on the pin's unit.
+// The next `count` sampler or image units of a pass, within the context's limits.
+int Executor::take_units(PassContextImpl& impl, bool image, int count, const std::string& uniform) {
+    const GlLimits& limits = gl_limits();
+    const GLenum limit = image ? GL_MAX_IMAGE_UNITS : GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS;
+    int& next = image ? impl.images : impl.samplers;
+    const int first = next;
+    next += std::max(count, 1);
+    if (next > limits.get(limit))
+        throw PassError(std::string("'") + uniform + "' needs " + (image ? "image" : "texture") + " unit " +
+                        std::to_string(next - 1) + " (" + std::to_string(next) + " " + (image ? "images" : "samplers") +
+                        " in the pass's programs); this context has " + std::to_string(limits.get(limit)) +
+                        (image ? " image units" : " texture units") + limits.source(limit));
+    int& max = image ? max_images_ : max_samplers_;
+    max = std::max(max, next);
+    return first;
+}
+
+// Texture pins that a program of the pass reads as u_<pin>, on the pin's unit; buffer pins on
+// their storage binding points.
 void Executor::bind_pins(const PassContextImpl& impl) {
     PassContext ctx(const_cast<PassContextImpl*>(&impl));
-    for (const std::string& pin : impl.sampled_pins) {
-        const int unit = impl.pin_unit.at(pin);
-        glBindTextureUnit(GLuint(unit), ctx.connected(pin) ? ctx.texture(pin).id : 0);
-    }
+    for (const std::string& pin : impl.sampled_pins)
+        glBindTextureUnit(GLuint(impl.sampler_unit.at(pin)), ctx.connected(pin) ? ctx.texture(pin).id : 0);
     for (const std::string& pin : impl.image_pins)
         if (ctx.connected(pin)) {
             const Texture t = ctx.texture(pin);
-            glBindImageTexture(GLuint(impl.pin_unit.at(pin)), t.id, 0, GL_FALSE, 0, GL_READ_WRITE, t.internal_format);
+            glBindImageTexture(GLuint(impl.image_unit.at(pin)), t.id, 0, GL_FALSE, 0, GL_READ_WRITE, t.internal_format);
         }
+    for (const auto& [pin, binding] : impl.buffer_binding)
+        if (ctx.connected(pin)) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(binding), ctx.buffer(pin).id);
 }
 
 Texture Executor::texture(const std::string& resource) const {

@@ -64,6 +64,7 @@ private:
     void check_gl(const std::string& pass, const char* phase);
     void reset_gl_state();
     void bind_pins(const PassContextImpl& impl);
+    int take_units(PassContextImpl& impl, bool image, int count, const std::string& uniform);
 
     GlContext& gl_;
     const CompiledGraph& cg_;
@@ -75,6 +76,8 @@ private:
     std::vector<std::unique_ptr<PassContextImpl>> contexts_;
     std::map<std::vector<GLuint>, GLuint> fbos_;
     GLuint empty_vao_ = 0;
+    // The most units and binding points any pass was given: what the reset between passes unbinds.
+    int max_samplers_ = 0, max_images_ = 0, max_bindings_ = 0, max_blocks_ = 0;
     FrameInfo frame_;
 };
 

@@ -7,6 +7,7 @@
 #include "image_io.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -91,6 +92,32 @@ std::string resolve_graph_path(const std::string& arg) {
     return arg;  // the parser reports "file not found" with the name as given
 }
 
+// Warm-up by time (RenderOptions::warmup_seconds): blocks of frames of a quarter second each,
+// finished on the GPU before the block's rate is taken, until `seconds` have passed and two
+// blocks in a row agree within 5 %. A GPU's clock governor needs seconds of load to settle.
+static void warm_up_by_time(double seconds, Profiler& profiler, const std::function<void()>& frame) {
+    using clock = std::chrono::steady_clock;
+    auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    const auto start = clock::now();
+    const double cap = std::max(5.0, 4.0 * seconds), block = 0.25;
+    double previous = 0;
+    bool settled = false;
+    while (true) {
+        const auto b0 = clock::now();
+        int n = 0;
+        do {
+            frame();
+            ++n;
+        } while (since(b0) < block);
+        glFinish();  // warm-up only: the block's frames done, so its rate is the GPU's
+        const double rate = double(n) / since(b0);
+        settled = previous > 0 && std::fabs(rate / previous - 1.0) < 0.05;
+        if ((settled && since(start) >= seconds) || since(start) >= cap) break;
+        previous = rate;
+    }
+    profiler.end_warmup(since(start), settled);
+}
+
 RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
     RenderResult res;
@@ -141,6 +168,9 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
         return res;
     }
     for (int w = 0; w < opt.warmup; ++w) exec.run_frame({index++, times[first], camera_at(times[first])});
+    if (opt.warmup_seconds > 0)
+        warm_up_by_time(opt.warmup_seconds, res.profiler,
+                        [&] { exec.run_frame({index++, times[first], camera_at(times[first])}); });
 
     size_t done = 0;
     std::set<std::string> cleaned;  // output folders cleared of stale temps

@@ -43,6 +43,10 @@ struct RenderOptions {
     double orbit_deg_per_s = 0.0;
     TimingBackend timing = TimingBackend::Auto;
     int warmup = 2;                  // frames rendered first and not timed or written
+    // Then, when > 0, warm-up by time: frames until at least this long has passed and the frame
+    // rate of the last two quarter-second blocks agrees within 5 % (a GPU's clock has settled),
+    // at most max(5 s, 4x this). `bench` uses 1 s on a GPU (0 on software renderers).
+    double warmup_seconds = 0;
     bool write_images = true;
     bool quiet = false;
     // What the caller sees while it runs (the render command's progress bar and video encoder):

@@ -27,10 +27,6 @@ namespace oit = pathlet::oit;
 
 class FillList : public pathlet::Pass {
 public:
-    ~FillList() override {
-        if (fbo_) glDeleteFramebuffers(1, &fbo_);
-    }
-
     void setup(pathlet::PassContext& ctx) override {
         records_ = ctx.connected("records");
         coverage_ = ctx.connected("coverage");
@@ -48,7 +44,7 @@ public:
         }
         if (records_) {
             defines.push_back("WRITE_RECORDS");
-            for (const auto& d : lines::density_defines()) defines.push_back(d);
+            for (const auto& d : lines::density_defines(ctx)) defines.push_back(d);
         }
         prog_ = &lines::program(ctx, {"fill_list.frag"}, lines::hooks(ctx), defines);
         GLint max_texels = 0;
@@ -63,13 +59,8 @@ public:
             drawer_.set_occlusion_culling(false);
             return;
         }
-        // Rasterise without colour attachments: a framebuffer that only has a size, plus the
-        // optional coverage depth (every fragment kept: depth test ALWAYS).
-        glm::ivec2 size = ctx.output_size();
-        if (!fbo_) glCreateFramebuffers(1, &fbo_);
-        glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x);
-        glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y);
-        glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, coverage_ ? ctx.texture("coverage").id : 0, 0);
+        // Without the G-buffer: a raster with no colour attachments, only the optional coverage
+        // depth (every fragment kept: depth test ALWAYS).
         drawer_.set_depth_func(GL_ALWAYS);
     }
 
@@ -112,8 +103,7 @@ private:
     // Grows the node buffer to hold `nodes` (never shrinks) and points the buffer texture at it.
     size_t ensure_capacity(pathlet::PassContext& ctx, size_t nodes) {
         pathlet::Buffer b = ctx.grow_buffer("nodes", nodes * oit::kNodeBytes);
-        view_ = nodes_buffer_view_.of(b);
-        if (records_) records_view_ = records_buffer_view_.of(ctx.grow_buffer("records", b.bytes));  // the same indices
+        if (records_) ctx.grow_buffer("records", b.bytes);  // the same indices
         return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
     }
 
@@ -122,20 +112,19 @@ private:
         if (writes_gbuffer_) {
             lines::bind_gbuffer(ctx, gbuffer_, *prog_);  // cleared again when an overflow re-renders
         } else {
-            glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-            glm::ivec2 size = ctx.output_size();
-            glViewport(0, 0, size.x, size.y);
+            ctx.bind_framebuffer({}, coverage_ ? "coverage" : "");
             if (coverage_) {
                 glDepthMask(GL_TRUE);
                 const float far = 1.0f;
-                glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &far);
+                glClearBufferfv(GL_DEPTH, 0, &far);
             }
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         }
-        GLuint counter = ctx.buffer("counter").id;
-        prog_->bind_image("u_nodes", view_, GL_RGBA32UI, GL_WRITE_ONLY);  // heads: by declaration
-        if (records_) prog_->bind_image("u_records", records_view_, GL_RGBA32UI, GL_WRITE_ONLY);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, oit::kCounterBinding, counter);
+        // heads (image) and counter (storage block) are bound by declaration; the buffers as images:
+        prog_->bind_image("u_nodes", ctx.buffer_texture("nodes", oit::kNodeFormat), oit::kNodeFormat, GL_WRITE_ONLY);
+        if (records_)
+            prog_->bind_image("u_records", ctx.buffer_texture("records", oit::kNodeFormat), oit::kNodeFormat, GL_WRITE_ONLY);
+        const GLuint counter = ctx.buffer("counter").id;
         prog_->use();
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
         drawer_.draw(ctx, *prog_);
@@ -149,8 +138,6 @@ private:
 
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    GLuint fbo_ = 0, view_ = 0, records_view_ = 0;  // the views of the current buffers
-    oit::BufferView nodes_buffer_view_, records_buffer_view_;
     bool coverage_ = false, records_ = false, writes_gbuffer_ = false;
     lines::GBufferTargets gbuffer_;  // the bound G-buffer colour targets (only with 'depth')
     size_t max_nodes_ = 1;

@@ -21,7 +21,7 @@ vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_
 
 layout(r32ui) uniform coherent uimage2D u_heads;            // the pin, by declaration
 layout(rgba32ui) uniform writeonly uimageBuffer u_nodes;    // the pass's view of the `nodes` buffer
-layout(std430, binding = OIT_COUNTER_BINDING) buffer OitCounter { uint oit_count; };
+layout(std430, binding = COUNTER_BINDING) buffer OitCounter { uint oit_count; };  // the pin `counter`
 uniform int u_capacity;  // nodes that fit; beyond it fragments are only counted
 
 void main() {

@@ -4,19 +4,17 @@
 // most a voxel; each piece adds its length to the 8 voxels around its midpoint with trilinear
 // weights (fixed point, integer atomics: exact and independent of order). Half-voxel pieces
 // gave the same AO (MAE 0.0812 vs 0.0813 on the phantom) for 1.3x the time. The points come
-// straight from the scene's vertex buffer (GpuScene::line_vao()'s layout, read from GL). A
+// straight from the scene's vertex buffer (GpuScene::points_texture()). A
 // compute shader, because a draw of one vertex per segment cost llvmpipe 7 ms in its
 // single-threaded vertex pipeline before any splatting (this dispatch, empty: 2 ms).
 #define LINE_DENSITY_WRITE
 #include "line_density.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = SCENE_POINTS_BINDING) readonly buffer ScenePoints { float points[]; };  // interleaved vertices
+uniform samplerBuffer u_points;  // GpuScene::points_texture(): POINT_FLOATS floats a point
 layout(std430, binding = SEGMENT_STARTS_BINDING) readonly buffer SegmentStarts { uint starts[]; };  // first point of each
 
 uniform int u_segments;
-uniform int u_stride;                 // floats per vertex
-uniform int u_position_offset, u_time_offset;  // float offsets of the position (vec3) and time in a vertex
 uniform vec2 u_window_range;          // [t0, t1] in seconds
 uniform int u_windowed;
 
@@ -35,9 +33,9 @@ void deposit(vec3 g, float len) {
     }
 }
 
+float point_float(uint i, int at) { return texelFetch(u_points, int(i) * POINT_FLOATS + at).r; }
 vec3 point_position(uint i) {
-    uint b = i * uint(u_stride) + uint(u_position_offset);
-    return vec3(points[b], points[b + 1u], points[b + 2u]);
+    return vec3(point_float(i, POSITION_FLOAT), point_float(i, POSITION_FLOAT + 1), point_float(i, POSITION_FLOAT + 2));
 }
 
 void main() {
@@ -45,7 +43,7 @@ void main() {
     if (s >= uint(u_segments)) return;
     uint i = starts[s];
     vec3 p0 = point_position(i), p1 = point_position(i + 1u);
-    float t0 = points[i * uint(u_stride) + uint(u_time_offset)], t1 = points[(i + 1u) * uint(u_stride) + uint(u_time_offset)];
+    float t0 = point_float(i, TIME_FLOAT), t1 = point_float(i + 1u, TIME_FLOAT);
     float fa = 0.0, fb = 1.0;
     if (u_windowed != 0) {
         if (t1 < u_window_range.x || t0 > u_window_range.y) return;

@@ -20,9 +20,6 @@ namespace lines = pathlet::lines;
 // whose fitted box exceeds the cap is an error in setup that names both.
 constexpr size_t kMaxVoxels = size_t(1) << 26;
 constexpr int kMargin = 2;  // empty voxels around the data: samples beyond the grid read zeros
-// Storage-buffer bindings of the splat's inputs (SCENE_POINTS_BINDING, SEGMENT_STARTS_BINDING);
-// the volume's own is the kit's (lines::density_defines()).
-constexpr GLuint kPointsBinding = 11, kStartsBinding = 12;
 
 size_t bytes_for(size_t voxels) { return lines::kDensityHeaderBytes + 4 * voxels; }
 
@@ -42,11 +39,12 @@ static_assert(sizeof(Header) == lines::kDensityHeaderBytes);
 class LineDensity : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        std::vector<std::string> defines = lines::density_defines();
-        defines.push_back("SCENE_POINTS_BINDING " + std::to_string(kPointsBinding));
-        defines.push_back("SEGMENT_STARTS_BINDING " + std::to_string(kStartsBinding));
+        // The points through the scene's buffer texture (its layout said once, in GpuScene).
+        std::vector<std::string> defines = lines::density_defines(ctx);
+        defines.push_back("POINT_FLOATS " + std::to_string(pathlet::GpuScene::kPointFloats));
+        defines.push_back("POSITION_FLOAT " + std::to_string(pathlet::GpuScene::kPositionFloat));
+        defines.push_back("TIME_FLOAT " + std::to_string(pathlet::GpuScene::kTimeFloat));
         prog_ = &ctx.program({"line_density.comp"}, defines);
-        read_point_layout(ctx.scene().line_vao());
         // The grid: cubic voxels over the lines' bounds, the longest side cut into `grid`.
         const pathlet::Bounds b = ctx.scene().cpu().lines.bounds();
         const int grid = ctx.params().i("grid");
@@ -101,22 +99,18 @@ public:
         starts_.clear();
         for (size_t k = 0; k < ranges_.first.size(); ++k)
             for (GLsizei i = 0; i + 1 < ranges_.count[k]; ++i) starts_.push_back(GLuint(ranges_.first[k] + i));
-        if (starts_.size() > index_capacity_) {
-            if (index_buffer_) glDeleteBuffers(1, &index_buffer_);
-            index_capacity_ = std::max(starts_.size(), index_capacity_ + index_capacity_ / 2);
-            glCreateBuffers(1, &index_buffer_);
-            glNamedBufferStorage(index_buffer_, GLsizeiptr(index_capacity_ * sizeof(GLuint)), nullptr,
-                                 GL_DYNAMIC_STORAGE_BIT);
-        }
         if (!starts_.empty()) {
-            glNamedBufferSubData(index_buffer_, 0, GLsizeiptr(starts_.size() * sizeof(GLuint)), starts_.data());
+            // The engine's buffer, bound on SEGMENT_STARTS_BINDING by declaration (also when grown:
+            // no per-frame allocation once the largest window has been seen).
+            const size_t bytes = starts_.size() * sizeof(GLuint);
+            pathlet::Buffer index = ctx.buffer("segment_starts");
+            if (index.bytes < bytes) index = ctx.grow_buffer("segment_starts", bytes + bytes / 2);
+            glNamedBufferSubData(index.id, 0, GLsizeiptr(bytes), starts_.data());
             prog_->use();
             prog_->set("u_segments", int(starts_.size()));
             prog_->set("u_window_range", glm::vec2(float(t0), float(t1)));
             prog_->set("u_windowed", tw.windowed ? 1 : 0);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lines::kDensityBinding, buf.id);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPointsBinding, points_);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStartsBinding, index_buffer_);
+            prog_->bind_texture("u_points", ctx.scene().points_texture());
             glDispatchCompute(GLuint((starts_.size() + 63) / 64), 1, 1);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
@@ -125,34 +119,10 @@ public:
         ctx.stat("volume_mib", double(bytes_for(voxels_)) / 1048576.0);
     }
 
-    ~LineDensity() override {
-        if (index_buffer_) glDeleteBuffers(1, &index_buffer_);
-    }
-
 private:
-    // Where GpuScene::line_vao() keeps the points: its buffer and the layout, read from GL, so
-    // the splat reads the same vertices the line kit draws.
-    void read_point_layout(GLuint scene_vao) {
-        GLint buffer = 0, stride = 0, pos = 0, time = 0;
-        GLint64 offset = 0;
-        glGetVertexArrayIndexediv(scene_vao, 0, GL_VERTEX_BINDING_BUFFER, &buffer);
-        glGetVertexArrayIndexediv(scene_vao, 0, GL_VERTEX_BINDING_STRIDE, &stride);
-        glGetVertexArrayIndexed64iv(scene_vao, 0, GL_VERTEX_BINDING_OFFSET, &offset);
-        glGetVertexArrayIndexediv(scene_vao, 0, GL_VERTEX_ATTRIB_RELATIVE_OFFSET, &pos);
-        glGetVertexArrayIndexediv(scene_vao, 1, GL_VERTEX_ATTRIB_RELATIVE_OFFSET, &time);
-        if (stride % 4 || pos % 4 || time % 4 || offset % 4)
-            throw std::runtime_error("the scene's point buffer is not laid out in floats");
-        points_ = GLuint(buffer);
-        prog_->set("u_stride", int(stride / 4));
-        prog_->set("u_position_offset", int((offset + pos) / 4));
-        prog_->set("u_time_offset", int((offset + time) / 4));
-    }
-
     bool built_ = false;  // time binning: what the buffer holds
     GLuint built_buffer_ = 0;
     double built_t0_ = 0, built_t1_ = 0;
-    GLuint points_ = 0, index_buffer_ = 0;
-    size_t index_capacity_ = 0;
     std::vector<GLuint> starts_;
     pathlet::ShaderProgram* prog_ = nullptr;
     pathlet::GpuScene::Ranges ranges_;
@@ -177,7 +147,9 @@ pathlet::PassTypeInfo line_density_type() {
         .output_buffer("density",
                        "the volume: header and fixed-point cells (line_density.glsl); the compiler allocates the "
                        "largest box `grid` can give, the pass uses the part its data needs",
-                       {.from_params = bound_bytes});
+                       {.from_params = bound_bytes})
+        .internal_buffer("segment_starts", "the first point of every segment in the window, one uint each (grown to "
+                         "the largest window, kept across frames)", {.bytes = 4}, {.persistent = true});
     return b.make<LineDensity>();
 }
 

@@ -13,20 +13,25 @@ layout(local_size_x = 64) in;
 
 #include "opacity_optimization.glsl"
 
-layout(std430, binding = OO_SEGMENTS_BINDING) readonly buffer OoSegments { uint oo_seg[]; };
-layout(std430, binding = OO_TARGETS_BINDING) readonly buffer OoTargets { uint oo_target[]; };
-layout(std430, binding = OO_SOURCE_BINDING) readonly buffer OoSource { uint oo_src[]; };  // values (float bits)
-layout(std430, binding = OO_DEST_BINDING) writeonly buffer OoDest { uint oo_dst[]; };
-layout(std430, binding = OO_STATE_BINDING) buffer OoState { uvec2 oo_state[]; };  // opacity bits, generation
-layout(std430, binding = OO_OPACITY_BINDING) writeonly buffer OoOpacity { uint oo_out[]; };
+// The pins and the pass's own buffers, on their bindings by declaration.
+layout(std430, binding = SEGMENTS_BINDING) readonly buffer OoSegments { uint oo_seg[]; };
+layout(std430, binding = TARGETS_BINDING) readonly buffer OoTargets { uint oo_target[]; };
+layout(std430, binding = OPACITY_BINDING) writeonly buffer OoOpacity { uint oo_out[]; };
+layout(std430, binding = STATE_BINDING) buffer OoState { uvec2 oo_state[]; };  // opacity bits, generation
+layout(std430, binding = SMOOTH_A_BINDING) buffer OoSmoothA { float oo_a[]; };
+layout(std430, binding = SMOOTH_B_BINDING) buffer OoSmoothB { float oo_b[]; };
 
 uniform int u_phase;
-uniform int u_source_at;  // the values' first word in the source (the targets' opacities, or 0)
+uniform int u_from;  // where this step's values are: 0 the targets, 1 smooth_a, 2 smooth_b
 uniform float u_smoothing_rate;
-uniform float u_blend;     // weight of this frame's value
+uniform float u_blend;  // weight of this frame's value
 
 bool seen_now(uint s) { return oo_target[OO_TARGET_ALPHA + s] != OO_UNSEEN; }
-float value(uint s) { return uintBitsToFloat(oo_src[uint(u_source_at) + s]); }
+float value(uint s) { return u_from == 0 ? uintBitsToFloat(oo_target[OO_TARGET_ALPHA + s]) : (u_from == 1 ? oo_a[s] : oo_b[s]); }
+void store(uint s, float v) {  // into the other smoothing buffer
+    if (u_from == 1) oo_b[s] = v;
+    else oo_a[s] = v;
+}
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -51,7 +56,7 @@ void main() {
         uvec3 line = oo_line(oo_seg, oo_seg[oo_per_segment(oo_seg) + s]);
         uint left = max(s, line.x + 1u) - 1u, right = min(s + 1u, line.x + line.y - 1u);
         float vl = seen_now(left) ? value(left) : v, vr = seen_now(right) ? value(right) : v;
-        oo_dst[s] = floatBitsToUint(v + u_smoothing_rate * (0.5 * (vl + vr) - v));
+        store(s, v + u_smoothing_rate * (0.5 * (vl + vr) - v));
         return;
     }
     uvec2 st = oo_state[s];

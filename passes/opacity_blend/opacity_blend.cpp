@@ -19,33 +19,28 @@
 
 namespace {
 
-// Storage bindings of the program, said once (OO_*_BINDING).
-constexpr GLuint kSegments = 0, kTargets = 1, kSource = 2, kDest = 3, kState = 4, kOpacity = 5;
 constexpr GLintptr kTargetGroupsAt = 4;    // OO_TARGET_GROUPS, in bytes
 constexpr GLintptr kSegmentGroupsAt = 16;  // OO_SEGMENT_GROUPS, in bytes
-constexpr GLuint kTargetAlphaAt = 8;       // OO_TARGET_ALPHA, in words
 constexpr double kStillStep = 1.0 / 25.0;  // seconds a frame without a time step counts as
 
 class OpacityBlend : public pathlet::Pass {
 public:
-    ~OpacityBlend() override {
-        const GLuint b[3] = {state_, ping_[0], ping_[1]};
-        glDeleteBuffers(3, b);
-    }
-
-    void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"opacity_blend.comp"},
-                             {"OO_SEGMENTS_BINDING " + std::to_string(kSegments), "OO_TARGETS_BINDING " + std::to_string(kTargets),
-                              "OO_SOURCE_BINDING " + std::to_string(kSource), "OO_DEST_BINDING " + std::to_string(kDest),
-                              "OO_STATE_BINDING " + std::to_string(kState), "OO_OPACITY_BINDING " + std::to_string(kOpacity)});
-    }
+    void setup(pathlet::PassContext& ctx) override { prog_ = &ctx.program({"opacity_blend.comp"}); }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
         const pathlet::Buffer segments = ctx.buffer("segments"), targets = ctx.buffer("targets");
         const size_t bound = segments.bytes / 4;  // >= segments, >= header + line table
-        ensure(bound);
-        const pathlet::Buffer out = ctx.grow_buffer("opacity", segments.bytes);
+        ctx.grow_buffer("opacity", segments.bytes);
+        ctx.grow_buffer("smooth_a", 4 * bound);
+        ctx.grow_buffer("smooth_b", 4 * bound);
+        // The state (kept across frames): a new store starts without any (generation 0).
+        const pathlet::Buffer state = ctx.grow_buffer("state", 8 * bound);
+        if (state.id != state_.id || state.bytes != state_.bytes) {
+            const GLuint zero = 0;
+            glClearNamedBufferData(state.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+            state_ = state;
+        }
 
         const double t = ctx.time();
         double dt = has_time_ ? std::fabs(t - last_time_) : 0.0;
@@ -56,61 +51,40 @@ public:
         const float blend = !has_time_ || back || half_life <= 0.0f ? 1.0f : float(1.0 - std::exp2(-dt / half_life));
         has_time_ = true;
 
-        prog_->use();  // smoothing_rate by declaration
+        prog_->use();  // the pins, the pass's buffers and smoothing_rate by declaration
         prog_->set("u_blend", blend);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSegments, segments.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTargets, targets.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kState, state_);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOpacity, out.id);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, targets.id);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        // Smoothing: targets -> ping 0 -> ping 1 -> ...; then the blend reads the last.
-        GLuint source = targets.id;
-        GLuint source_at = kTargetAlphaAt;
-        const int steps = p.i("smoothing");
-        for (int k = 0; k < steps; ++k) {
-            const GLuint dest = ping_[k % 2];
-            phase(0, source, source_at, dest);
-            source = dest;
-            source_at = 0;
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        // Smoothing: the targets -> smooth_a -> smooth_b -> smooth_a ...; the blend reads the last.
+        int from = 0;
+        for (int k = 0; k < p.i("smoothing"); ++k) {
+            phase(0, from);
+            from = from == 1 ? 2 : 1;
         }
-        phase(1, source, source_at, 0);
-        prog_->set("u_phase", 2);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, segments.id);
-        glDispatchComputeIndirect(kSegmentGroupsAt);  // over the segments and the line table
+        phase(1, from);
+        phase_on(2, from, segments.id, kSegmentGroupsAt);  // over the segments and the line table
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         ctx.stat("blend", blend);
     }
 
 private:
-    void phase(int which, GLuint source, GLuint source_at, GLuint dest) {
+    // One dispatch over the segments that got fragments (the targets' work groups).
+    void phase(int which, int from) {
         prog_->set("u_phase", which);
-        prog_->set("u_source_at", int(source_at));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSource, source);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDest, dest ? dest : ping_[0]);
+        prog_->set("u_from", from);
         glDispatchComputeIndirect(kTargetGroupsAt);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-
-    // Pass-private buffers for `bound` segments: the state (kept across frames, zero = no state)
-    // and the two smoothing buffers.
-    void ensure(size_t bound) {
-        if (bound <= capacity_) return;
-        const GLuint old[3] = {state_, ping_[0], ping_[1]};
-        glDeleteBuffers(3, old);
-        glCreateBuffers(1, &state_);
-        glNamedBufferStorage(state_, GLsizeiptr(8 * bound), nullptr, GL_DYNAMIC_STORAGE_BIT);
-        const GLuint zero = 0;
-        glClearNamedBufferData(state_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        glCreateBuffers(2, ping_);
-        for (GLuint b : ping_) glNamedBufferStorage(b, GLsizeiptr(4 * bound), nullptr, 0);
-        capacity_ = bound;
+    void phase_on(int which, int from, GLuint groups_buffer, GLintptr at) {
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, groups_buffer);
+        prog_->set("u_phase", which);
+        prog_->set("u_from", from);
+        glDispatchComputeIndirect(at);
     }
 
     pathlet::ShaderProgram* prog_ = nullptr;
-    GLuint state_ = 0, ping_[2] = {0, 0};
-    size_t capacity_ = 0;
+    pathlet::Buffer state_;  // the state store last seen (a new one is cleared)
     double last_time_ = 0.0;
     bool has_time_ = false;
 };
@@ -134,6 +108,10 @@ pathlet::PassTypeInfo opacity_blend_type() {
                        "the segmentation's header and line table, then each segment's opacity (float): the buffer a "
                        "line pass's hook_buffer takes for optimized_fade.glsl / optimized_core.glsl",
                        {.bytes = 16})
+        .internal_buffer("state", "per segment its opacity and the generation of the segmentation it belongs to",
+                         {.bytes = 16}, {.persistent = true})
+        .internal_buffer("smooth_a", "smoothing steps ping-pong between this and smooth_b", {.bytes = 16})
+        .internal_buffer("smooth_b", "see smooth_a", {.bytes = 16})
         .make<OpacityBlend>();
 }
 

@@ -32,8 +32,6 @@ namespace {
 namespace lines = pathlet::lines;
 namespace oo = opacity_lists;
 
-// Storage bindings of the pass's program, said once (OO_LISTS_BINDING, OO_SOURCE_BINDING).
-constexpr GLuint kListsBinding = 0, kSourceBinding = 1;
 // The lists' layout (shaders/opacity_optimization.glsl): header words, node words.
 constexpr size_t kListHeaderWords = 8, kNodeWords = 4;
 constexpr uint32_t kEnd = 0xFFFFFFFFu;   // OO_END
@@ -55,7 +53,6 @@ class OpacityLists : public pathlet::Pass {
 public:
     ~OpacityLists() override {
         if (fbo_) glDeleteFramebuffers(1, &fbo_);
-        if (source_) glDeleteBuffers(1, &source_);
         if (readback_) glDeleteBuffers(1, &readback_);
         if (fence_) glDeleteSync(fence_);
     }
@@ -63,8 +60,7 @@ public:
     void setup(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
         const auto importance = p.e<Importance>("importance");
-        std::vector<std::string> defines{"OO_LISTS_BINDING " + std::to_string(kListsBinding),
-                                         "OO_SOURCE_BINDING " + std::to_string(kSourceBinding)};
+        std::vector<std::string> defines;  // the pins' bindings come from the engine (LISTS_BINDING, ...)
         if (importance == Importance::hook) defines.push_back("OO_IMPORTANCE_HOOK");
         prog_ = &lines::program(ctx, {"opacity_lists.frag"}, lines::hooks(ctx), defines);
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment, as OIT keeps them
@@ -103,9 +99,8 @@ public:
         const uint32_t generation = g_generation.fetch_add(1);
         const std::vector<uint32_t> with_importance = oo::pack(seg, generation, &g);
         segments_bytes_ = 4 * (with_importance.size() - seg.segments());  // the public part
-        if (source_) glDeleteBuffers(1, &source_);
-        glCreateBuffers(1, &source_);
-        glNamedBufferStorage(source_, GLsizeiptr(4 * with_importance.size()), with_importance.data(), 0);
+        const pathlet::Buffer source = ctx.grow_buffer("source", 4 * with_importance.size());
+        glNamedBufferSubData(source.id, 0, GLsizeiptr(4 * with_importance.size()), with_importance.data());
         ctx.grow_buffer("segments", segments_bytes_);
         segments_ = seg.segments();
 
@@ -162,16 +157,14 @@ public:
         glClearNamedBufferSubData(lists.id, GL_R32UI, GLintptr(sizeof header), GLsizeiptr(4 * pixels), GL_RED_INTEGER,
                                   GL_UNSIGNED_INT, &kEnd);
         // The public segments, every frame (the resource may be pooled with others between frames).
-        glCopyNamedBufferSubData(source_, ctx.buffer("segments").id, 0, 0, GLsizeiptr(segments_bytes_));
+        glCopyNamedBufferSubData(ctx.buffer("source").id, ctx.buffer("segments").id, 0, 0, GLsizeiptr(segments_bytes_));
 
         glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x);
         glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
         glViewport(0, 0, size.x, size.y);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kListsBinding, lists.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSourceBinding, source_);
-        prog_->use();
+        prog_->use();  // lists and source on their bindings by declaration
         drawer_.draw(ctx, *prog_);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         glCopyNamedBufferSubData(lists.id, readback_, GLintptr(4 * kCountWord), 0, 4);
@@ -192,7 +185,7 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    GLuint fbo_ = 0, source_ = 0, readback_ = 0;
+    GLuint fbo_ = 0, readback_ = 0;
     GLsync fence_ = nullptr;
     size_t segments_bytes_ = 0, segments_ = 0, capacity_ = 0, wanted_ = 0, max_bytes_ = 0;
     long long events_ = 0;
@@ -235,7 +228,9 @@ pathlet::PassTypeInfo opacity_lists_type() {
         .output_buffer("segments",
                        "the segmentation: header, per line its first segment, count and segment length, per segment "
                        "its line (shaders/opacity_optimization.glsl)",
-                       {.bytes = 16});
+                       {.bytes = 16})
+        .internal_buffer("source", "the segmentation with each segment's importance, made at setup",
+                         {.bytes = 16}, {.persistent = true});
     return b.make<OpacityLists>();
 }
 

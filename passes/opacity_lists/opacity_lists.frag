@@ -10,9 +10,9 @@
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_hook)
 
-layout(std430, binding = OO_LISTS_BINDING) coherent buffer OoLists { uint oo_list[]; };
-// The pass's segmentation with the importance of segment s at [b[3] + S + s].
-layout(std430, binding = OO_SOURCE_BINDING) readonly buffer OoSource { uint oo_src[]; };
+layout(std430, binding = LISTS_BINDING) coherent buffer OoLists { uint oo_list[]; };  // the pin `lists`
+// The pass's segmentation with the importance of segment s at [b[3] + S + s] (internal `source`).
+layout(std430, binding = SOURCE_BINDING) readonly buffer OoSource { uint oo_src[]; };
 
 void main() {
     LineFrag f = line_fragment();

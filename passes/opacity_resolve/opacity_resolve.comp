@@ -10,9 +10,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "opacity_optimization.glsl"
 
-layout(std430, binding = OO_LISTS_BINDING) readonly buffer OoLists { uint oo_list[]; };
-layout(std430, binding = OO_SEGMENTS_BINDING) readonly buffer OoSegments { uint oo_seg[]; };
-layout(std430, binding = OO_TARGETS_BINDING) coherent buffer OoTargets { uint oo_target[]; };
+layout(std430, binding = LISTS_BINDING) readonly buffer OoLists { uint oo_list[]; };
+layout(std430, binding = SEGMENTS_BINDING) readonly buffer OoSegments { uint oo_seg[]; };
+layout(std430, binding = TARGETS_BINDING) coherent buffer OoTargets { uint oo_target[]; };
 
 uniform float u_q;       // occlusion: important fragments behind must show
 uniform float u_r;       // clutter: important fragments in front must not be cluttered

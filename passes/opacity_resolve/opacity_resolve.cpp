@@ -11,8 +11,6 @@
 
 namespace {
 
-// Storage bindings of the program, said once (OO_*_BINDING).
-constexpr GLuint kListsBinding = 0, kSegmentsBinding = 1, kTargetsBinding = 2;
 // The targets' header (shaders/opacity_optimization.glsl): count, blend work groups (x, 1, 1),
 // peak, beyond, truncated, 0.
 constexpr GLuint kTargetHeader[8] = {0, 0, 1, 1, 0, 0, 0, 0};
@@ -21,11 +19,8 @@ constexpr GLuint kUnseen = 0xFFFFFFFFu;  // OO_UNSEEN
 class OpacityResolve : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &ctx.program({"opacity_resolve.comp"},
-                             {"OO_LISTS_BINDING " + std::to_string(kListsBinding),
-                              "OO_SEGMENTS_BINDING " + std::to_string(kSegmentsBinding),
-                              "OO_TARGETS_BINDING " + std::to_string(kTargetsBinding),
-                              "MAX_FRAGMENTS " + std::to_string(ctx.params().i("max_fragments"))});
+        // The pins' storage bindings come from the engine (LISTS_BINDING, SEGMENTS_BINDING, ...).
+        prog_ = &ctx.program({"opacity_resolve.comp"}, {"MAX_FRAGMENTS " + std::to_string(ctx.params().i("max_fragments"))});
     }
 
     void execute(pathlet::PassContext& ctx) override {
@@ -39,10 +34,7 @@ public:
         glClearNamedBufferSubData(targets.id, GL_R32UI, 0, GLsizeiptr(bytes), GL_RED_INTEGER, GL_UNSIGNED_INT, &kUnseen);
         glNamedBufferSubData(targets.id, 0, sizeof kTargetHeader, kTargetHeader);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kListsBinding, lists.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSegmentsBinding, segments.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTargetsBinding, targets.id);
-        prog_->use();  // q, r, lambda by declaration
+        prog_->use();  // q, r, lambda and the pins by declaration
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, lists.id);
         glDispatchComputeIndirect(0);  // the lists' work groups (their header's first words)
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

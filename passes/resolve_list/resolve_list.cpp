@@ -11,18 +11,11 @@
 
 namespace {
 
-constexpr GLuint kStatsBinding = 9;  // RESOLVE_STATS_BINDING: peak list length, truncated pixels
-
 class ResolveList : public pathlet::Pass {
 public:
-    ~ResolveList() override {
-        if (stats_) glDeleteBuffers(1, &stats_);
-    }
-
     void setup(pathlet::PassContext& ctx) override {
         targets_ = {"color"};
         std::vector<std::string> defines = pathlet::oit::defines();
-        defines.push_back("RESOLVE_STATS_BINDING " + std::to_string(kStatsBinding));
         defines.push_back("MAX_FRAGMENTS " + std::to_string(ctx.params().i("max_fragments")));
         for (const char* pin : {"unlit", "front_alpha"})
             if (ctx.connected(pin)) {
@@ -39,15 +32,11 @@ public:
             for (const char* pin : {"front_normal_depth", "front_line_id", "front_ao"}) targets_.push_back(pin);
         }
         if (vao_on_) {
-            for (const std::string& d : pathlet::lines::VolumeAo::defines(ctx.params())) defines.push_back(d);
+            for (const std::string& d : pathlet::lines::VolumeAo::defines(ctx)) defines.push_back(d);
             defines.push_back("VOLUME_AO");
             defines.push_back("VAO_LAYERS " + std::to_string(ctx.params().i("ao_layers")));
         }
         prog_ = &ctx.program({"fullscreen.vert", "resolve_list.frag"}, defines);
-        if (!stats_) {
-            glCreateBuffers(1, &stats_);
-            glNamedBufferStorage(stats_, 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
-        }
         if (ctx.connected("ao") != ctx.connected("core"))
             throw std::runtime_error("connect both 'ao' and 'core' (the core's normal_depth) or neither");
         if (vao_on_ && ctx.connected("ao"))  // the shader has one source of AO per fragment
@@ -57,9 +46,10 @@ public:
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
-        const GLuint nodes = nodes_view_.of(ctx.buffer("nodes"));  // fill_list may have grown it
+        const GLuint nodes = ctx.buffer_texture("nodes", pathlet::oit::kNodeFormat);  // fill_list may have grown it
+        const GLuint stats = ctx.buffer("stats").id;
         const GLuint zero[4] = {0, 0, 0, 0};
-        glNamedBufferSubData(stats_, 0, sizeof(zero), zero);
+        glNamedBufferSubData(stats, 0, sizeof(zero), zero);
         const bool skip_empty = ctx.connected("coverage");
         if (skip_empty) {  // background everywhere first; the shader then runs on covered tiles only
             const glm::vec4 bg(p.v3("background"), 0.0f);
@@ -76,11 +66,10 @@ public:
         }
         ctx.bind_framebuffer(targets_, skip_empty ? "coverage" : "");
         prog_->bind_texture("u_nodes", nodes);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kStatsBinding, stats_);
-        prog_->use();  // heads, ao, core and the parameters by declaration
+        prog_->use();  // heads, ao, core, stats and the parameters by declaration
         prog_->set("u_use_ao", ctx.connected("ao") ? 1 : 0);
         if (vao_on_) {
-            prog_->bind_texture("u_records", records_view_.of(ctx.buffer("records")));
+            prog_->bind_texture("u_records", ctx.buffer_texture("records", pathlet::oit::kNodeFormat));
             vao_.bind(ctx, *prog_);
         }
         if (skip_empty) {
@@ -93,7 +82,7 @@ public:
         }
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         GLuint s[2] = {0, 0};
-        glGetNamedBufferSubData(stats_, 0, sizeof(s), s);
+        glGetNamedBufferSubData(stats, 0, sizeof(s), s);
         ctx.stat("peak_nodes_per_pixel", double(s[0]));
         ctx.stat("truncated_pixels", double(s[1]));
     }
@@ -101,8 +90,6 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     std::vector<std::string> targets_;
-    GLuint stats_ = 0;
-    pathlet::oit::BufferView nodes_view_, records_view_;
     pathlet::lines::VolumeAo vao_;
     bool vao_on_ = false;
 };
@@ -133,6 +120,7 @@ pathlet::PassTypeInfo resolve_list_type() {
                            "fill_list's coverage depth: when connected, pixels without fragments are only cleared", {.optional = true})
             .input_buffer("records", "fill_list's records: with density, every fragment is shaded by its own AO", {.optional = true})
             .input_buffer("density", "the line-density volume (line_density), with records", {.optional = true})
+            .internal_buffer("stats", "peak list length and truncated pixels of the frame (two uints)", {.bytes = 16})
             .output_texture("color", "rgba8",
                             "composited colour, alpha 1 where any fragment landed (lit by AO when ao is connected)")
             .output_texture("unlit", "rgba8", "the same composite without AO (bind it to get it)", {.optional = true})

@@ -20,7 +20,7 @@ layout(r32ui) uniform readonly uimage2D u_heads;
 uniform usamplerBuffer u_nodes;
 uniform sampler2D u_ao;    // smoothed AO of the core (when u_use_ao)
 uniform sampler2D u_core;  // the core's normal + linear depth (w)
-layout(std430, binding = RESOLVE_STATS_BINDING) buffer OitResolveStats { uint peak_nodes; uint truncated_pixels; };
+layout(std430, binding = STATS_BINDING) buffer OitResolveStats { uint peak_nodes; uint truncated_pixels; };
 uniform int u_use_ao;
 uniform float u_ao_tolerance;  // linear depth within which a fragment counts as the core surface
 uniform vec3 u_background;

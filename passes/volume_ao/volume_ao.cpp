@@ -14,7 +14,7 @@ namespace lines = pathlet::lines;
 class VolumeAoPass : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        std::vector<std::string> defines = lines::VolumeAo::defines(ctx.params());
+        std::vector<std::string> defines = lines::VolumeAo::defines(ctx);
         if (ctx.connected("screen_ao")) defines.push_back("SCREEN_AO");
         prog_ = &ctx.program({"fullscreen.vert", "volume_ao.frag"}, defines);
     }

@@ -95,5 +95,49 @@ TEST(ProfilerReport, ChromeTraceHasNestedXEventsOnBothTracks) {
     EXPECT_EQ(frame_dur[std::make_pair(2, uint64_t(3))], 6500);
 }
 
+
+// Wall clock over the measured frames: from the first measured frame's start to the flush that
+// saw the last one done. FakeRun's measured frames k = 2..9 each take 13.5 + k ms of the clock,
+// gaps included (the flush comes after the last gap): 152 ms for 8 frames.
+TEST(ProfilerReport, WallFpsSpansTheMeasuredFramesToTheFlush) {
+    FakeRun r(10);
+    EXPECT_EQ(r.p.wall_fps(), 0.0);  // not flushed yet: no end
+    r.p.flush();
+    EXPECT_NEAR(r.p.wall_fps(), 8 * 1000.0 / 152.0, 1e-9);
+    r.t += 1000;  // a later flush does not move the end
+    r.p.flush();
+    EXPECT_NEAR(r.p.wall_fps(), 8 * 1000.0 / 152.0, 1e-9);
+    EXPECT_NE(r.p.table("t").find("fps (wall clock)"), std::string::npos);
+    const auto j = r.p.to_json({});
+    EXPECT_NEAR(j["frame"]["wall_fps"].get<double>(), 8 * 1000.0 / 152.0, 1e-9);
+}
+
+// A run whose frame times spread beyond p95/p5 = 1.5 is flagged; a steady one is not.
+TEST(ProfilerReport, UnstableRunsAreFlaggedInTableAndJson) {
+    FakeRun spread(10);  // frames 7.5 .. 14.5 ms: p95/p5 ~ 1.8
+    spread.p.flush();
+    EXPECT_TRUE(spread.p.unstable());
+    EXPECT_NE(spread.p.table("t").find("UNSTABLE: frame times p95/p5 = "), std::string::npos);
+    EXPECT_TRUE(spread.p.to_json({})["frame"]["unstable"].get<bool>());
+
+    Profiler steady;
+    double t = 0;
+    steady.set_clock([&] { return t; });
+    steady.set_warmup_frames(0);
+    steady.init(TimingBackend::CpuFinish, "llvmpipe");
+    for (int k = 0; k < 20; ++k) {
+        steady.begin_frame(uint64_t(k));
+        steady.begin_pass("lines");
+        t += k % 2 ? 10.0 : 12.0;  // within 1.5x
+        steady.end_pass();
+        steady.end_frame();
+    }
+    steady.flush();
+    EXPECT_FALSE(steady.unstable());
+    EXPECT_EQ(steady.table("t").find("UNSTABLE"), std::string::npos);
+    EXPECT_FALSE(steady.to_json({})["frame"]["unstable"].get<bool>());
+    EXPECT_NEAR(steady.to_json({})["frame"]["p95_over_p5"].get<double>(), 1.2, 1e-9);
+}
+
 }  // namespace
 }  // namespace pathlet

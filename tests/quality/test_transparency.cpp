@@ -5,7 +5,6 @@
 #include "transparency.hpp"
 
 #include "frame_capture.hpp"
-#include "phantom/phantom.hpp"
 #include "straight_lines.hpp"
 
 #include <gtest/gtest.h>
@@ -105,7 +104,7 @@ TEST(Transparency, AnImportantLineBehindACurtainBecomesVisibleOnlyWithQ) {
 }
 
 TEST(Transparency, AFrozenViewOfThePhantomConvergesAndStaysStill) {
-    const Scene& s = phantom::load_or_make_phantom("small");
+    const Scene& s = small_phantom_scene();
     const TransparencyResult r = measure("variant4_opacity", {}, s, "2", 60);
     ASSERT_EQ(r.max_alpha_change_per_frame.size(), 59u);
     EXPECT_LT(r.max_alpha_change_per_frame.back(), 1e-4);

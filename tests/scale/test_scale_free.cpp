@@ -7,7 +7,6 @@
 // scale: it is switched off (the time label stays).
 #include "frame_capture.hpp"
 #include "image_probes.hpp"
-#include "phantom/phantom.hpp"
 #include "shipped_graphs.hpp"
 
 #include <gtest/gtest.h>
@@ -17,11 +16,6 @@
 using namespace pathlet;
 
 namespace {
-
-const Scene& phantom_small() {
-    static const Scene s = phantom::make_phantom(phantom::phantom_preset("small"), {});
-    return s;
-}
 
 Scene scaled(const Scene& s, float k) {
     Scene out = s;
@@ -58,7 +52,7 @@ void expect_scale_free(const ShippedGraph& g) {
             if (r.name == o.resource && r.format == "rgba8") outputs.push_back(o.resource);
     ASSERT_FALSE(outputs.empty()) << g.name << " has no rgba8 output";
 
-    const Frame base = render_frame(test_runtime(), phantom_small(), opt, outputs);
+    const Frame base = render_frame(test_runtime(), small_phantom_scene(), opt, outputs);
     for (const std::string& name : outputs) {
         const Image& ref = base[name];
         ASSERT_FALSE(has_nan(ref));
@@ -70,7 +64,7 @@ void expect_scale_free(const ShippedGraph& g) {
         if (g.draws_lines) EXPECT_GT(double(drawn), 0.01 * ref.width * ref.height) << name << " shows no data";
     }
     for (float k : {0.01f, 100.0f}) {
-        const Frame f = render_frame(test_runtime(), scaled(phantom_small(), k), opt, outputs);
+        const Frame f = render_frame(test_runtime(), scaled(small_phantom_scene(), k), opt, outputs);
         for (const std::string& name : outputs) {
             const double rms = rms_levels(f[name], base[name]);
             EXPECT_LT(rms, 0.5) << g.name << " '" << name << "' at " << k << "x the scale: RMS " << rms << " levels";

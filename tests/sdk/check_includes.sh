@@ -42,5 +42,26 @@ for f in passes/*/*.cpp passes/*/*.hpp plugins/*/*.cpp plugins/*/*.hpp \
     fi
   done <"$f"
 done
-[ "$bad" -eq 0 ] && echo "check_includes: every pass and plugin includes only its own folder and the SDK"
+# The SDK's own code (engine/sdk/src, engine/lines/src) likewise: its folder, the SDK, system
+# headers; never engine/core or engine/data (the SDK is installed without them).
+for f in engine/sdk/src/*.cpp engine/sdk/src/*.hpp engine/lines/src/*.cpp engine/lines/src/*.hpp; do
+  [ -f "$f" ] || continue
+  dir=$(dirname "$f")
+  n=0
+  re='^[[:space:]]*#[[:space:]]*include[[:space:]]*(["<])([^">]+)[">]'
+  while IFS= read -r line; do
+    n=$((n + 1))
+    [[ "$line" =~ $re ]] || continue
+    inc=${BASH_REMATCH[2]}
+    [ -f "$dir/$inc" ] && continue
+    case "$inc" in
+      pathlet/*) [ -f "engine/sdk/include/$inc" ] || [ -f "engine/lines/include/$inc" ] ||
+                   report "$f" "$n" "includes <$inc>, which the SDK does not have" ;;
+      *) for root in engine/core engine/data engine/apps; do
+           [ -f "$root/$inc" ] && { report "$f" "$n" "the SDK includes $root/$inc, an engine internal: the SDK is installed without it"; break; }
+         done ;;
+    esac
+  done <"$f"
+done
+[ "$bad" -eq 0 ] && echo "check_includes: every pass and plugin includes only its own folder and the SDK; so does the SDK"
 exit "$bad"

@@ -1,4 +1,5 @@
 #include "frame_capture.hpp"
+#include "phantom/phantom.hpp"
 
 #include "executor.hpp"
 
@@ -69,6 +70,11 @@ Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std
         for (const auto& [k, v] : p.stats) f.stats[k] = v;
     if (opt.camera_path.empty()) f.camera = frame_bounds(scene.bounds(), opt.size);
     return f;
+}
+
+const Scene& small_phantom_scene() {
+    static const Scene s = phantom::make_phantom(phantom::phantom_preset("small"), {});
+    return s;
 }
 
 const Scene& helix_bundle_scene() {

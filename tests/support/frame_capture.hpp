@@ -32,6 +32,9 @@ Image read_resource(const Texture& t);
 // Renders `opt` (time start only, no files) and reads the named resources.
 Frame render_frame(Runtime& rt, const Scene& scene, RenderOptions opt, const std::vector<std::string>& names);
 
+// The built-in small phantom (lines and wall, 0..4 s), made once per process.
+const Scene& small_phantom_scene();
+
 // The test bundle: 40 helices around the x axis (4 rings, speeds varying per line and in time)
 // and one isolated, gently waving line beside it; times 0..10 s, 101 points per line.
 const Scene& helix_bundle_scene();

@@ -3,6 +3,8 @@
 // Everything is rebuilt from the JSON, so shard merges write exactly what one run would.
 #pragma once
 
+#include "profiler/profiler.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -13,6 +15,18 @@ namespace pathlet::cli::bench {
 // The table a person reads: per run and pass, median/p5/p95 ms.
 std::string summary_csv(const nlohmann::json& report);
 std::string frames_csv(const nlohmann::json& report);
+
+// One row of the summary printed at the end of a bench: a run's frame times, its wall-clock
+// frame rate and what its line passes culled ("-" where none).
+struct SummaryRow {
+    std::string label;
+    Profiler::Stats frame;
+    double wall_fps = 0;
+    std::string chunks = "-";
+};
+// The summary: median/p5/p95 frame ms, fps of the median frame, wall fps, chunks; a run whose
+// p95/p5 exceeds Profiler::kUnstableRatio is marked UNSTABLE, with a line saying what that means.
+std::string summary_table(const std::vector<SummaryRow>& rows);
 
 // Writes the files above into dir (atomically, each); returns their names.
 std::vector<std::string> write_report_dir(const std::string& dir, const nlohmann::json& report);

@@ -4,6 +4,7 @@
 
 #include "cli/scene_args.hpp"
 
+#include "gl_context.hpp"
 #include "renderer.hpp"
 
 #include <cstdio>
@@ -68,6 +69,9 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
         if (s.shard.owns(k) && checked.emplace(runs[k].graph, runs[k].sweep_value).second)
             rt.load_graph(resolve_graph_path(e.graphs[runs[k].graph].graph), run_sets(e, runs[k]));
     rt.ensure_gl(true);
+    // A GPU's clock settles only under seconds of load: warm up by time there (llvmpipe has no
+    // governor, and a second of its frames would only slow the runs down).
+    if (!is_software_renderer(rt.gl->renderer())) base.warmup_seconds = 1.0;
 
     Results results(e, s.command, rt.gl->renderer(), s.graphs, runs.size(), s.shard);
     results.set_complete(mine == 0);

@@ -262,8 +262,7 @@ ChunkCounts chunk_counts(const Profiler& p) {
 
 struct Finished {
     json results;
-    std::vector<std::pair<std::string, Profiler::Stats>> summary;
-    std::vector<ChunkCounts> chunks;  // per summary row
+    std::vector<bench::SummaryRow> summary;
     std::string source;
     size_t done = 0;
 };
@@ -288,8 +287,14 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
         const std::string title = run->run.label + " — " + run->run.size + ", " +
                                   std::to_string(run->scene.lines.line_count()) + " lines";
         if (!o.quiet || !p.from_file) std::printf("%s\n", run->profiler.table(title).c_str());
-        f.summary.push_back({run->run.label + "  " + run->run.size, run->profiler.frame_ms()});
-        f.chunks.push_back(chunk_counts(run->profiler));
+        bench::SummaryRow row{run->run.label + "  " + run->run.size, run->profiler.frame_ms(), run->profiler.wall_fps()};
+        const ChunkCounts c = chunk_counts(run->profiler);
+        if (c.any) {
+            char chunks[96];
+            std::snprintf(chunks, sizeof chunks, "%.0f+%.0f / %.0f / %.0f", c.phase1, c.phase2, c.occluded, c.frustum);
+            row.chunks = chunks;
+        }
+        f.summary.push_back(row);
         f.source = run->scene.source;
         f.done = run->done;
         progress.update(f.done, run->run.label);
@@ -304,17 +309,7 @@ int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& 
     std::printf("summary (%s; %s)\n", f.results.value("gl_renderer", "").c_str(), f.source.c_str());
     // Chunks per frame over the culling line passes: drawn in phase 1 + phase 2 / hidden by
     // depth / outside the frustum (the line kit's culling; cull=false: nothing hidden).
-    std::printf("  %-40s %10s %10s %10s %8s  %s\n", "run", "median ms", "p5 ms", "p95 ms", "fps",
-                "chunks drawn p1+p2 / occluded / frustum-culled");
-    for (size_t i = 0; i < f.summary.size(); ++i) {
-        const auto& [label, s] = f.summary[i];
-        const ChunkCounts& c = f.chunks[i];
-        char chunks[96] = "-";
-        if (c.any)
-            std::snprintf(chunks, sizeof chunks, "%.0f+%.0f / %.0f / %.0f", c.phase1, c.phase2, c.occluded, c.frustum);
-        std::printf("  %-40s %10.2f %10.2f %10.2f %8.1f  %s\n", label.c_str(), s.median, s.p5, s.p95,
-                    s.median > 0 ? 1000.0 / s.median : 0.0, chunks);
-    }
+    std::fputs(bench::summary_table(f.summary).c_str(), stdout);
     if (p.from_file) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", p.out_dir.c_str());
     if (o.plots && !write_plots(p.out_dir)) return 1;
     if (!o.report.empty()) std::fprintf(stderr, "wrote %s.csv and %s.json\n", o.report.c_str(), o.report.c_str());

@@ -4,10 +4,31 @@
 #include "io/file_info.hpp"
 #include "scene_args.hpp"
 
+#include "gl_context.hpp"
+#include "runtime.hpp"
+
+#include <pathlet/gl_limits.hpp>
+
 #include <cstdio>
 
 namespace pathlet::cli {
 namespace {
+
+// `info --gl`: one NAME VALUE a line, for scripts (scripts/gpu-check.sh) as much as for people.
+int print_gl_limits() {
+    try {
+        Runtime rt;
+        GlContext& gl = rt.ensure_gl(/*quiet=*/true);
+        const GlLimits& limits = gl_limits();
+        std::printf("GL_RENDERER %s\nGL_VERSION %s\nPATHLET_GL_LIMITS %s\n", gl.renderer().c_str(), gl.version().c_str(),
+                    limits.minimum_mode() ? "minimum" : "context");
+        for (const GlLimit& l : gl_limit_table()) std::printf("%s %d\n", l.name, limits.get(l.pname));
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "pathlet info: error: %s\n", e.what());
+        return 1;
+    }
+}
 
 int run(const std::vector<std::string>& argv) {
     Args a("info", "Summarises a pathline or mesh file: format, lines, points, arrays, time span, speed range,\n"
@@ -17,18 +38,28 @@ int run(const std::vector<std::string>& argv) {
                    "zlib), .pathlet caches, plain-text rows 'x y z x y z ...', tractography TrackVis .trk and MRtrix\n"
                    ".tck. Meshes: .gltf/.glb, .stl, .obj. Units are shown where the file says them (VTK field data\n"
                    "LengthUnit/TimeUnit/VelocityUnit, .pathlet, tracts in mm) or --units gives them.\n"
+                   "With --gl instead of a file: the GL renderer and every limit the engine works within, one\n"
+                   "'NAME VALUE' a line (PATHLET_GL_LIMITS=minimum: the GL 4.5 minimum of each).\n"
                    "Exit status: 0 ok, 1 the file cannot be read (message on stderr), 2 bad usage.");
     std::string file;
+    bool gl = false;
     ArrayOptions arrays;
-    a.positional("FILE", file, "pathline or mesh file");
+    a.positional("FILE", file, "pathline or mesh file", /*required=*/false);
+    a.flag("gl", gl, "print the GL renderer and the limits the engine uses (binding points, units, sizes)");
     arrays.declare(a);
     a.example("pathlet info flow.vtp", "summary of a VTK XML pathline file")
         .example("pathlet info blood_flow --time-step 0.005", "plain-text rows sampled every 5 ms")
         .example("pathlet info lines.vtk --time-array IntegrationTime", "name the time array explicitly")
         .example("pathlet info aorta-surface.stl", "vertices, triangles and bounds of a vessel wall")
         .example("pathlet info tracks300.trk", "TrackVis tractography: header, tracks, scalars and properties")
-        .example("pathlet info blood_flow --time-step 0.005 --units mm", "text rows in mm, so speeds in mm/s");
+        .example("pathlet info blood_flow --time-step 0.005 --units mm", "text rows in mm, so speeds in mm/s")
+        .example("pathlet info --gl", "the GL renderer and limits (PATHLET_GL_LIMITS=minimum: a minimal GL 4.5 driver)");
     if (!a.parse(argv)) return 0;
+    if (gl) {
+        if (!file.empty()) throw UsageError("give FILE or --gl, not both");
+        return print_gl_limits();
+    }
+    if (file.empty()) throw UsageError("missing FILE (or --gl)");
     const io::LoadOptions opts = arrays.load_options();
     try {
         std::fputs(io::describe_file(file, opts).c_str(), stdout);

@@ -129,6 +129,7 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
             r.kind = pin.kind;
             r.implicit = true;
             r.internal = pin.internal;
+            r.persistent = pin.persistent;  // an internal resource the pass keeps across frames
             r.pointer = p.pointer;
             if (idx.resource_by_name.emplace(r.name, int(idx.resources.size())).second) idx.resources.push_back(r);
         }
@@ -155,7 +156,7 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
                 b.pointer = p.pointer + "/" + key + "/" + pointer_escape(pin);
                 const PinDecl* pd = t->pin(pin);
                 if (pd && pd->internal) {
-                    error(b.pointer, "'" + pin + "' is " + t->type + "'s internal texture (the pass's own, allocated by "
+                    error(b.pointer, "'" + pin + "' is " + t->type + "'s internal " + std::string(pd->kind == PinKind::Texture ? "texture" : "buffer") + " (the pass's own, allocated by "
                                      "the engine): graphs do not bind it; remove this binding");
                     pd = nullptr;
                 } else if (!pd || pd->dir != dir) {

@@ -52,6 +52,10 @@ void Profiler::init(TimingBackend requested, const std::string& gl_renderer) {
     in_frame_ = false;
     frames_begun_ = 0;
     dropped_ = 0;
+    warmup_seconds_ = 0;
+    warmup_settled_ = true;
+    wall_end_ms_ = 0;
+    wall_end_frames_ = 0;
 
     const std::string software = software_renderer_name(gl_renderer);
     backend_ = requested;
@@ -245,13 +249,31 @@ void Profiler::collect_ready() {
 }
 
 void Profiler::flush() {
-    if (backend_ != TimingBackend::GlTimestamp) return;
-    const size_t keep = in_frame_ ? 1 : 0;  // the frame being recorded is not submitted yet
-    while (in_flight_.size() > keep) {
-        try_collect(in_flight_.front(), true);
-        spare_sets_.push_back(std::move(in_flight_.front().queries));
-        in_flight_.pop_front();
+    if (backend_ == TimingBackend::GlTimestamp) {
+        const size_t keep = in_frame_ ? 1 : 0;  // the frame being recorded is not submitted yet
+        while (in_flight_.size() > keep) {
+            try_collect(in_flight_.front(), true);
+            spare_sets_.push_back(std::move(in_flight_.front().queries));
+            in_flight_.pop_front();
+        }
     }
+    // The wall clock's end: the first flush after the last frame (its GPU work is done by now).
+    if (!in_frame_ && frames_.size() != wall_end_frames_) {
+        wall_end_ms_ = now();
+        wall_end_frames_ = frames_.size();
+    }
+}
+
+double Profiler::wall_fps() const {
+    const FrameRecord* first = nullptr;
+    size_t n = 0;
+    for (const auto& f : frames_)
+        if (measured(f) && f.cpu.valid) {
+            if (!first) first = &f;
+            ++n;
+        }
+    if (!first || wall_end_frames_ == 0 || wall_end_ms_ <= first->cpu.begin) return 0.0;
+    return double(n) * 1000.0 / (wall_end_ms_ - first->cpu.begin);
 }
 
 void Profiler::release_gl() {

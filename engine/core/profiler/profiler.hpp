@@ -49,6 +49,13 @@ public:
     std::string backend_description() const { return description_; }
 
     void set_warmup_frames(int n) { warmup_frames_ = n < 0 ? 0 : n; }  // default 3
+    // Every frame begun so far was warm-up (a warm-up by time, whose length is known only after):
+    // measuring starts with the next frame. `seconds` and `settled` are reported with the timing.
+    void end_warmup(double seconds, bool settled) {
+        warmup_frames_ = int(frames_begun_);
+        warmup_seconds_ = seconds;
+        warmup_settled_ = settled;
+    }
     // Replaces the steady clock (milliseconds, any epoch); for deterministic tests.
     void set_clock(std::function<double()> now_ms) { clock_ = std::move(now_ms); }
 
@@ -70,6 +77,15 @@ public:
     Stats frame_cpu_ms() const;              // whole frame, CPU wall clock
     size_t frames_recorded() const { return frames_.size(); }
     size_t gpu_frames_dropped() const { return dropped_; }  // > 64 frames behind, or implausible values
+    // Frames per second of wall clock over the measured frames: from the first one's start on the
+    // CPU to the moment flush() saw the last one done (on the GPU too). What a user waits for;
+    // with a CPU-bound loop far below 1000 / median frame time. 0 before flush().
+    double wall_fps() const;
+    // A run whose frame times spread more than kUnstableRatio (p95 / p5): the clock changed under
+    // it (a GPU's governor), or something else ran. Its median is not a number to quote alone.
+    static constexpr double kUnstableRatio = 1.5;
+    static bool unstable(const Stats& frame) { return frame.p5 > 0 && frame.p95 / frame.p5 > kUnstableRatio; }
+    bool unstable() const { return unstable(frame_ms()); }
 
     std::string table(const std::string& title) const;
     std::string csv() const;
@@ -123,6 +139,10 @@ private:
     TimingBackend backend_ = TimingBackend::CpuFinish;
     std::string description_ = "not initialised";
     int warmup_frames_ = 3;
+    double warmup_seconds_ = 0;
+    bool warmup_settled_ = true;
+    double wall_end_ms_ = 0;        // when flush() saw every recorded frame done
+    size_t wall_end_frames_ = 0;    // frames_.size() then
     std::function<double()> clock_;
     double epoch_ms_ = 0;
     double gl_to_cpu_ms_ = 0;  // added to GL timestamps (ms) to land on the profiler clock

@@ -118,6 +118,10 @@ std::string Profiler::table(const std::string& title) const {
     }
     out << row("frame", frame, fmt("%9.1f%%", frame.n ? 100.0 : 0.0), frame_cpu_ms());
     out << name_col("fps (median frame)") << fmt("%10.1f", fps(frame)) << "\n";
+    out << name_col("fps (wall clock)") << fmt("%10.1f", wall_fps()) << "\n";
+    if (unstable(frame))
+        out << "UNSTABLE: frame times p95/p5 = " << fmt("%.2f", frame.p95 / frame.p5) << " > " << fmt("%.1f", kUnstableRatio)
+            << " (a clock that changed during the run, or other load): quote the range, not the median\n";
     // What passes counted (segments drawn, OIT nodes, overflow events...), mean per frame.
     bool header = false;
     for (const PassResult& r : results) {
@@ -174,8 +178,16 @@ nlohmann::json Profiler::to_json(const nlohmann::json& meta) const {
               {"description", description_},
               {"warmup_frames_excluded", warm},
               {"frames_measured", frame.n},
+              {"warmup_seconds", warmup_seconds_},
+              {"warmup_settled", warmup_settled_},
               {"gpu_frames_dropped", dropped_}}},
-            {"frame", {{"gpu_ms", stats_json(frame)}, {"cpu_ms", stats_json(frame_cpu_ms())}, {"fps", fps(frame)}}},
+            {"frame",
+             {{"gpu_ms", stats_json(frame)},
+              {"cpu_ms", stats_json(frame_cpu_ms())},
+              {"fps", fps(frame)},
+              {"wall_fps", wall_fps()},
+              {"p95_over_p5", frame.p5 > 0 ? frame.p95 / frame.p5 : 0.0},
+              {"unstable", unstable(frame)}}},
             {"passes", pass_list}};
 }
 

@@ -3,6 +3,8 @@
 // One copy of each, so a fix (a quote inside an argument, a file too deep) reaches every caller.
 #pragma once
 
+#include <pathlet/text.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -14,7 +16,7 @@
 namespace pathlet::text {
 
 // ---- lists ------------------------------------------------------------------------------
-std::string join(const std::vector<std::string>& items, std::string_view sep = ", ");
+// join (and closest_match, did_you_mean below) are the SDK's: <pathlet/text.hpp>.
 // Pieces between `sep`; empty pieces are dropped ("a,,b" -> a, b).
 std::vector<std::string> split(const std::string& s, char sep);
 
@@ -29,14 +31,6 @@ std::string shell_command(const std::vector<std::string>& words);
 std::string csv_field(const std::string& s);
 // RFC 6901 JSON pointer token: "~" -> "~0", "/" -> "~1".
 std::string pointer_escape(const std::string& key);
-
-// ---- did you mean -----------------------------------------------------------------------
-// The candidate closest to `word` (restricted Damerau-Levenshtein, case-insensitive), or ""
-// when none is within one edit per three characters ("raduis" -> "radius", "blur" !-> "bloom").
-std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
-// " (did you mean 'PREFIXx'?)" or "": appended to "unknown ..." messages.
-std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates,
-                         const std::string& prefix = "");
 
 // ---- JSON -------------------------------------------------------------------------------
 // A JSON text that cannot be read: the reason and the byte offset it was found at (npos: none).

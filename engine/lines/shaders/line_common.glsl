@@ -1,9 +1,8 @@
 // The line kit's GLSL, shared by every stage that draws pathlet quads. A stage file defines
 // one of LINE_STAGE_VERTEX, LINE_STAGE_GEOMETRY or LINE_STAGE_FRAGMENT before including this
 // and gets that stage's interface and helpers. The uniform block and the per-pathlet buffer
-// are filled by the kit's C++ side (pathlet/lines.hpp, lines::Drawer), which also defines
-// their binding points (LINE_KIT_BINDING, LINE_PATHLET_BINDING) for every program it makes;
-// hooks: line_hooks.glsl.
+// are filled by the kit's C++ side (pathlet/lines.hpp, lines::Drawer); their units and binding
+// points are the engine's. Hooks: line_hooks.glsl.
 #ifndef PATHLET_LINE_COMMON_GLSL
 #define PATHLET_LINE_COMMON_GLSL
 
@@ -56,13 +55,14 @@ in LineVertex { LINE_VERTEX_MEMBERS } v_in[];
 out LineFragment { LINE_FRAGMENT_MEMBERS } g_out;
 
 // Per line, this frame (lines::Drawer): arc length at the pathlet's head and tail, and the
-// times that age 0 and age 1 stand for.
-layout(std430, binding = LINE_PATHLET_BINDING) readonly buffer LinePathlets { vec4 line_pathlet[]; };
+// times that age 0 and age 1 stand for. A buffer texture, not a storage block: GL 4.5 guarantees
+// geometry shaders no storage blocks at all (GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS may be 0).
+uniform samplerBuffer u_line_pathlets;
 
 // The hook's view of a point at view-space position `pos_view`, data time `time` and arc length
 // `arc` on line `id`.
 LinePoint line_point(vec3 pos_view, float time, float arc, float speed, int id) {
-    vec4 pl = line_pathlet[id];
+    vec4 pl = texelFetch(u_line_pathlets, id);
     LinePoint p;
     p.time = time;
     p.age = clamp((pl.z - time) / max(pl.z - pl.w, 1e-9), 0.0, 1.0);

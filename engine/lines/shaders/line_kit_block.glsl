@@ -1,11 +1,11 @@
 // The line kit's uniform block: what every stage of a kit program (the kit's own and the
 // hooks) sees of the current draw. Filled by lines::Drawer from one C++ struct whose layout is
-// checked against this declaration for every program the kit makes; LINE_KIT_BINDING comes
-// from C++ too (lines::program).
+// checked against this declaration for every program the kit makes; its binding point is the
+// engine's (ShaderProgram::block_binding), so no number is written here.
 #ifndef PATHLET_LINE_KIT_BLOCK_GLSL
 #define PATHLET_LINE_KIT_BLOCK_GLSL
 
-layout(std140, binding = LINE_KIT_BINDING) uniform LineKit {
+layout(std140) uniform LineKit {
     mat4 u_view;
     mat4 u_proj;
     vec2 u_window;           // [t0, t1] in seconds

@@ -84,9 +84,6 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     files.insert(files.end(), fragment.begin(), fragment.end());
     files.push_back(hooks.color.empty() ? "line_color_default.frag" : staged(hooks.color, "frag", ".frag"));
     std::vector<std::string> all = defines;
-    all.push_back("LINE_KIT_BINDING " + std::to_string(kKitBlockBinding));
-    all.push_back("LINE_PATHLET_BINDING " + std::to_string(kPathletBinding));
-    all.push_back("LINE_HOOK_BUFFER_BINDING " + std::to_string(kHookBufferBinding));
     if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
     // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both
     // sides of every branch, so a uniform switch costs all four maps per fragment. setup()
@@ -96,9 +93,11 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
     ShaderProgram& prog = ctx.program(files, all);
     check_block_layout(prog);
-    if (!ctx.connected("hook_buffer") && reads_storage_binding(prog, kHookBufferBinding))
-        throw ShaderError("a hook of " + ctx.pass_name() + " reads the storage block at LINE_HOOK_BUFFER_BINDING, but "
-                          "the pass's input 'hook_buffer' is not connected (it would read whatever was bound last)");
+    const PassTypeInfo* type = ctx.params().type();
+    if (type && type->pin("hook_buffer") && !ctx.connected("hook_buffer") &&
+        reads_storage_binding(prog, GLuint(ctx.buffer_binding("hook_buffer"))))
+        throw ShaderError("a hook of " + ctx.pass_name() + " reads the storage block at HOOK_BUFFER_BINDING, but the "
+                          "pass's input 'hook_buffer' is not connected (it would read whatever was bound last)");
     return prog;
 }
 
@@ -137,8 +136,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     scene.pathlets(tw.t0, tw.t1, pathlets_);
     if (pathlets_.empty()) pathlets_.push_back(glm::vec4(0.0f));  // a buffer of size 0 cannot be bound
     upload(buffer_, capacity_, pathlets_.data(), pathlets_.size() * sizeof(glm::vec4));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPathletBinding, buffer_);
-    if (ctx.connected("hook_buffer")) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kHookBufferBinding, ctx.buffer("hook_buffer").id);
+    prog.bind_texture("u_line_pathlets", pathlets_view_.of({buffer_, capacity_}, GL_RGBA32F));
 
     // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
     // or scale (orthographic), for the pass's output height.
@@ -180,7 +178,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
         glNamedBufferStorage(block_, sizeof(KitBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
     glNamedBufferSubData(block_, 0, sizeof(KitBlock), &block);
-    glBindBufferBase(GL_UNIFORM_BUFFER, kKitBlockBinding, block_);
+    if (prog.block_binding("LineKit") >= 0) glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(prog.block_binding("LineKit")), block_);
     segments_ = 0;
 }
 

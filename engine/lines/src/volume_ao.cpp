@@ -21,14 +21,18 @@ PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b) {
         .param_int("steps", 8, 1, 64, "density samples per ray");
 }
 
-std::vector<std::string> density_defines() {
+std::vector<std::string> density_defines(const PassContext& ctx) {
     char scale[32];
     std::snprintf(scale, sizeof scale, "%.1f", kDensityScale);
-    return {"LINE_DENSITY_BINDING " + std::to_string(kDensityBinding), std::string("LINE_DENSITY_SCALE ") + scale};
+    const PassTypeInfo* type = ctx.params().type();
+    const PinDecl* pin = type ? type->pin(kDensityPin) : nullptr;
+    const int binding = pin && pin->kind == PinKind::Buffer ? ctx.buffer_binding(kDensityPin) : 0;
+    return {"LINE_DENSITY_BINDING " + std::to_string(binding), std::string("LINE_DENSITY_SCALE ") + scale};
 }
 
-std::vector<std::string> VolumeAo::defines(const Params& p) {
-    std::vector<std::string> d = density_defines();
+std::vector<std::string> VolumeAo::defines(const PassContext& ctx) {
+    const Params& p = ctx.params();
+    std::vector<std::string> d = density_defines(ctx);
     d.push_back("VAO_DIRECTIONS " + std::to_string(p.i("directions")));
     d.push_back("VAO_STEPS " + std::to_string(p.i("steps")));
     return d;
@@ -38,7 +42,8 @@ VolumeAo::~VolumeAo() {
     if (texture_) glDeleteTextures(1, &texture_);
 }
 
-void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog, const std::string& pin) {
+void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog) {
+    const std::string pin = kDensityPin;
     const Params& p = ctx.params();
     const float width = line_width(ctx);
     prog.set("u_vao_reach", p.f("reach") * width);
@@ -51,7 +56,6 @@ void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog, const std::stri
     prog.set("u_vao_perspective", cam.proj[2][3] < -0.5f ? 1 : 0);
     prog.set("u_vao_inv_size", 1.0f / glm::vec2(ctx.output_size()));
     const Buffer volume = ctx.buffer(pin);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDensityBinding, volume.id);
 
     // The grid's size from the header. It changes only with the builder's setup, which sizes the
     // buffer by the grid: read back (a wait for the builder) only for a new buffer or size.

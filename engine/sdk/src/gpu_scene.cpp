@@ -1,6 +1,7 @@
 #include <pathlet/gpu_scene.hpp>
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 
 namespace pathlet {
@@ -15,6 +16,9 @@ struct LineVertex {
     float arc;  // arc length from the line's first point
 };
 static_assert(sizeof(LineVertex) == GpuScene::kLineVertexBytes);
+static_assert(sizeof(LineVertex) == GpuScene::kPointFloats * sizeof(float));
+static_assert(offsetof(LineVertex, position) == GpuScene::kPositionFloat * sizeof(float));
+static_assert(offsetof(LineVertex, time) == GpuScene::kTimeFloat * sizeof(float));
 
 glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
     float l = glm::length(v);
@@ -27,8 +31,9 @@ GpuScene::~GpuScene() { release(); }
 void GpuScene::release() {
     if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
     if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
+    if (points_tex_) glDeleteTextures(1, &points_tex_);
     mesh_.release();
-    line_vao_ = line_vbo_ = 0;
+    line_vao_ = line_vbo_ = points_tex_ = 0;
 }
 
 void GpuMesh::release() {
@@ -125,6 +130,8 @@ void GpuScene::upload(const Scene& scene) {
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
                          v.empty() ? nullptr : v.data(), 0);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &points_tex_);
+    glTextureBuffer(points_tex_, GL_R32F, line_vbo_);
     glCreateVertexArrays(1, &line_vao_);
     glVertexArrayVertexBuffer(line_vao_, 0, line_vbo_, 0, sizeof(LineVertex));
     auto attrib = [&](GLuint loc, GLint n, GLuint offset) {

@@ -1,7 +1,8 @@
 #include <pathlet/pass.hpp>
 
-#include "util/text.hpp"
+#include <pathlet/text.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -9,6 +10,12 @@
 namespace pathlet {
 
 const char* direction_name(const PinDecl& p) { return p.internal ? "internal" : p.dir == PinDir::Input ? "in" : "out"; }
+
+std::string binding_define(const std::string& pin) {
+    std::string d;
+    for (char c : pin) d += std::isalnum(static_cast<unsigned char>(c)) ? char(std::toupper(static_cast<unsigned char>(c))) : '_';
+    return d + "_BINDING";
+}
 
 const char* to_string(ParamType t) {
     switch (t) {
@@ -146,6 +153,10 @@ json PassTypeInfo::default_params() const {
     return j;
 }
 
+namespace {
+std::string md_pin_shape(const PinDecl& p);
+}
+
 std::string PassTypeInfo::describe() const {
     std::ostringstream s;
     s << type << " — " << doc << "\n";
@@ -195,10 +206,16 @@ std::string PassTypeInfo::describe() const {
     any = false;
     for (const auto& p : pins)
         if (p.internal) {
-            if (!any) s << "\ninternal (the pass's own textures: allocated and pooled by the engine, not bound in graphs):\n";
+            if (!any) s << "\ninternal (the pass's own textures and buffers: allocated by the engine, not bound in graphs):\n";
             any = true;
-            s << "  " << p.name << " (texture " << p.format;
-            if (p.scale != 1.0f) s << ", " << p.scale << "x output size";
+            s << "  " << p.name << " (";
+            if (p.kind == PinKind::Texture) {
+                s << "texture " << p.format;
+                if (p.scale != 1.0f) s << ", " << p.scale << "x output size";
+            } else {
+                s << md_pin_shape(p);
+            }
+            if (p.persistent) s << ", kept across frames";
             s << ")\n      " << p.doc << "\n";
         }
     return s.str();
@@ -364,7 +381,16 @@ PassTypeBuilder& PassTypeBuilder::internal_texture(const std::string& name, cons
     o.optional = false;  // always there: the pass's own
     PinDecl p = make_pin(name, PinDir::Output, PinKind::Texture, format, doc, o);
     p.internal = true;
+    p.persistent = o.persistent;
     info_.pins.push_back(p);
+    return *this;
+}
+PassTypeBuilder& PassTypeBuilder::internal_buffer(const std::string& name, const std::string& doc, BufferSize size,
+                                                  PinOptions o) {
+    o.optional = false;  // always there: the pass's own
+    output_buffer(name, doc, std::move(size), o);
+    info_.pins.back().internal = true;
+    info_.pins.back().persistent = o.persistent;
     return *this;
 }
 PassTypeBuilder& PassTypeBuilder::input_buffer(const std::string& name, const std::string& doc, PinOptions o) {

@@ -1,6 +1,7 @@
 #include <pathlet/shader.hpp>
+#include <pathlet/gl_limits.hpp>
 
-#include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -183,31 +184,12 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
         throw ShaderError("GLSL link error in program (" + list + "):\n" + log.c_str());
     }
+    // What a minimal GL 4.5 driver would refuse fails here on any driver (pathlet/gl_limits.hpp).
+    check_program_limits(prog.id_, prog.files_);
     prog.reflect();
     return prog;
 }
 
-namespace {
-bool is_image(GLenum t) {
-    switch (t) {
-        case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_BUFFER: case GL_IMAGE_2D_ARRAY:
-        case GL_INT_IMAGE_2D: case GL_INT_IMAGE_3D: case GL_INT_IMAGE_BUFFER: case GL_INT_IMAGE_2D_ARRAY:
-        case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D: case GL_UNSIGNED_INT_IMAGE_BUFFER:
-        case GL_UNSIGNED_INT_IMAGE_2D_ARRAY: return true;
-        default: return false;
-    }
-}
-bool is_sampler(GLenum t) {
-    switch (t) {
-        case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_ARRAY:
-        case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_MULTISAMPLE:
-        case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D: case GL_INT_SAMPLER_BUFFER: case GL_INT_SAMPLER_2D_ARRAY:
-        case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_BUFFER:
-        case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: return true;
-        default: return false;
-    }
-}
-}  // namespace
 
 // Active uniforms of the default block; samplers and images get units 0, 1, ... each in
 // GL's order (what a layout(binding) in the source said is replaced: units are the engine's).
@@ -226,14 +208,33 @@ void ShaderProgram::reflect() {
         name.resize(std::strlen(name.c_str()));
         if (name.size() > 3 && name.compare(name.size() - 3, 3, "[0]") == 0) name.resize(name.size() - 3);
         Uniform u{name, GLenum(v[1]), v[2], v[3]};
-        u.image = is_image(u.type);
-        u.opaque = u.image || is_sampler(u.type);
-        if (u.opaque) {
-            u.unit = u.image ? images++ : samplers++;
-            glProgramUniform1i(id_, u.location, u.unit);
-        }
+        u.image = is_image_type(u.type);
+        u.opaque = u.image || is_sampler_type(u.type);
         uniforms_.push_back(u);
+        if (u.opaque) {
+            int& next = u.image ? images : samplers;
+            set_unit(u.name, next);
+            next += std::max(1, u.size);
+        }
     }
+    blocks_.clear();
+    glGetProgramInterfaceiv(id_, GL_UNIFORM_BLOCK, GL_ACTIVE_RESOURCES, &count);
+    for (GLint i = 0; i < count; ++i) {
+        GLint len = 0;
+        const GLenum prop = GL_NAME_LENGTH;
+        glGetProgramResourceiv(id_, GL_UNIFORM_BLOCK, GLuint(i), 1, &prop, 1, nullptr, &len);
+        std::string name(size_t(std::max(len, 1)), '\0');
+        glGetProgramResourceName(id_, GL_UNIFORM_BLOCK, GLuint(i), len, nullptr, name.data());
+        name.resize(std::strlen(name.c_str()));
+        glUniformBlockBinding(id_, GLuint(i), GLuint(i));
+        blocks_.push_back({name, int(i)});
+    }
+}
+
+int ShaderProgram::block_binding(const std::string& name) const {
+    for (const auto& b : blocks_)
+        if (b.name == name) return b.binding;
+    return -1;
 }
 
 const ShaderProgram::Uniform* ShaderProgram::uniform(const std::string& name) const {
@@ -246,7 +247,9 @@ void ShaderProgram::set_unit(const std::string& name, int unit) {
     for (auto& u : uniforms_)
         if (u.name == name && u.opaque) {
             u.unit = unit;
-            glProgramUniform1i(id_, u.location, unit);
+            std::vector<GLint> units(size_t(std::max(1, u.size)));
+            for (size_t k = 0; k < units.size(); ++k) units[k] = unit + GLint(k);
+            glProgramUniform1iv(id_, u.location, GLsizei(units.size()), units.data());
             return;
         }
 }
@@ -272,7 +275,7 @@ void ShaderProgram::bind_image(const std::string& name, GLuint texture, GLenum f
 }
 
 ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept
-    : id_(o.id_), uniforms_(std::move(o.uniforms_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)) {
+    : id_(o.id_), uniforms_(std::move(o.uniforms_)), blocks_(std::move(o.blocks_)), locs_(std::move(o.locs_)), declared_(std::move(o.declared_)), files_(std::move(o.files_)) {
     o.id_ = 0;
 }
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
@@ -280,6 +283,7 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
         if (id_) glDeleteProgram(id_);
         id_ = o.id_;
         uniforms_ = std::move(o.uniforms_);
+        blocks_ = std::move(o.blocks_);
         locs_ = std::move(o.locs_);
         declared_ = std::move(o.declared_);
         files_ = std::move(o.files_);

@@ -20,13 +20,14 @@
 // the head, 1 at the tail), the arc length from the head and from the tail, speed, line id,
 // its arc length along the whole line and its position in data coordinates. A hook that needs
 // data of its own (per line, per segment) reads the pass's optional input buffer `hook_buffer`
-// as a std430 storage block at LINE_HOOK_BUFFER_BINDING (e.g. shaders/oo_opacity.glsl).
+// as a std430 storage block at HOOK_BUFFER_BINDING (e.g. shaders/oo_opacity.glsl).
 // The kit derives the quad, tube normal and tube depth from the hooked width. Its own fades are
 // hook files: fade_opacity.frag (variant 2's end fade), fade_width.geom (variant 3's taper),
 // fade_core.frag, all on line_fade.glsl's parameters. A pass with resources of its own is a
 // small C++ class on GBufferPass or Drawer (see plugins/example_fade/).
 #pragma once
 
+#include <pathlet/buffer_texture.hpp>
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/pass.hpp>
 #include <pathlet/shader.hpp>
@@ -36,15 +37,6 @@
 #include <vector>
 
 namespace pathlet::lines {
-
-// Binding points of the kit's buffers (passes use other points): the per-pathlet shader storage
-// buffer and the uniform block LineKit. Programs made by lines::program() get them as the
-// defines LINE_PATHLET_BINDING and LINE_KIT_BINDING, so GLSL never repeats the numbers.
-constexpr GLuint kPathletBinding = 7;
-constexpr GLuint kKitBlockBinding = 7;
-// The storage binding of a kit pass's optional `hook_buffer` input (LINE_HOOK_BUFFER_BINDING in
-// its programs), bound by lines::Drawer: what the pass's hooks read beside LinePoint.
-constexpr GLuint kHookBufferBinding = 6;
 
 // GLSL hook files, found on the shader path and next to the graph. Empty: the kit's default
 // (full width; the colour map as it is, opaque).
@@ -157,6 +149,7 @@ private:
     std::vector<glm::vec4> pathlets_;
     GLuint buffer_ = 0;
     size_t capacity_ = 0;
+    BufferTexture pathlets_view_;  // u_line_pathlets
     GLuint block_ = 0;  // the LineKit uniform block's buffer
     float typical_window_ = -1.0f, typical_length_ = 1.0f;  // cached per window length
     std::unique_ptr<ChunkCuller> culler_;
@@ -172,14 +165,17 @@ float typical_pathlet_length(const Scene& scene, float window);
 
 // Object-space AO from the line-density volume (the line_density pass; GLSL: the installed
 // line_density.glsl and line_volume_ao.glsl, whose line_volume_ao_fragment(LineFrag) gives a
-// fragment its own AO). The volume is a shader storage buffer at kDensityBinding: a header
-// (grid size, origin, voxel size, window) and fixed-point cells (kDensityScale per voxel length).
-// Both reach GLSL through density_defines(), so they are said here only.
-constexpr GLuint kDensityBinding = 10;
+// fragment its own AO). The volume is a shader storage buffer, a pass's buffer pin named
+// kDensityPin (so on the engine's binding point for it): a header (grid size, origin, voxel size,
+// window) and fixed-point cells (kDensityScale per voxel length). Both reach GLSL through
+// density_defines(), so they are said here only.
+constexpr const char* kDensityPin = "density";
 constexpr double kDensityScale = 65536.0;
 constexpr size_t kDensityHeaderBytes = 48;
-// LINE_DENSITY_BINDING and LINE_DENSITY_SCALE for line_density.glsl.
-std::vector<std::string> density_defines();
+// LINE_DENSITY_BINDING (the pass's `density` pin's binding point; 0 for a pass without one, which
+// may then only use line_volume_ao.glsl's packing helpers) and LINE_DENSITY_SCALE for
+// line_density.glsl.
+std::vector<std::string> density_defines(const PassContext& ctx);
 // Parameters of the AO estimate, declared once: reach (line widths), ao_scale, directions, steps.
 PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b);
 // What a pass that evaluates line_volume_ao.glsl keeps: the cells as a 3D texture.
@@ -190,11 +186,11 @@ public:
     VolumeAo& operator=(const VolumeAo&) = delete;
     ~VolumeAo();
     // density_defines() and the direction and step counts compiled into line_volume_ao.glsl.
-    static std::vector<std::string> defines(const Params& p);
+    static std::vector<std::string> defines(const PassContext& ctx);
     // Every frame, with `prog` in use: sets the uniforms (the radius is half the kit's line
-    // width), binds the volume of input pin `pin` and copies its cells into the texture that
-    // u_density_cells samples (a wait for the pass that built it).
-    void bind(PassContext& ctx, const ShaderProgram& prog, const std::string& pin = "density");
+    // width) and copies the cells of the pass's `density` pin (bound by declaration) into the
+    // texture that u_density_cells samples.
+    void bind(PassContext& ctx, const ShaderProgram& prog);
 
 private:
     GLuint texture_ = 0;

@@ -46,6 +46,11 @@ public:
     bool has_mesh() const { return mesh_.index_count() > 0; }
 
     GLuint line_vao() const { return line_vao_; }
+    // The same points as a buffer texture of floats (R32F: samplerBuffer, texelFetch(t, i).r) for
+    // compute passes: point i's position is at i * kPointFloats + kPositionFloat (3 floats), its
+    // time at i * kPointFloats + kTimeFloat. Owned by the scene; bind it to a sampler of yours.
+    GLuint points_texture() const { return points_tex_; }
+    static constexpr int kPointFloats = 12, kPositionFloat = 0, kTimeFloat = 3;
     GLuint mesh_vao() const { return mesh_.vao(); }  // location 0 position, 1 normal; indexed
     GLsizei mesh_index_count() const { return mesh_.index_count(); }
 
@@ -104,7 +109,7 @@ private:
     std::vector<float> arc_;  // per point, arc length from its line's first point
     LineLod lod_;
     LineChunks chunks_;
-    GLuint line_vao_ = 0, line_vbo_ = 0;
+    GLuint line_vao_ = 0, line_vbo_ = 0, points_tex_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;

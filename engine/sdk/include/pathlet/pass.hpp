@@ -63,6 +63,7 @@ struct PinOptions {
     bool optional = false;  // may stay unconnected; the pass asks connected()
     int mips = 1;           // outputs and internal textures: mip levels; 0 = full chain
     float scale = 1.0f;     // outputs and internal textures: size = scale x output size
+    bool persistent = false;  // internal textures and buffers: content kept across frames (not pooled)
 };
 // The size of a buffer output: {.bytes = 1024}, {.bytes_per_pixel = 16}, or decided by the
 // pass's resolved parameters, {.from_params = [](const json& p) { return ...; }} (a volume's grid).
@@ -83,8 +84,9 @@ struct PinDecl {
     size_t bytes_per_pixel = 0;  // ... size proportional to the output's pixel count
     bool optional = false;       // may stay unconnected; an unconnected optional output gets no
                                  // resource (connected() is false), a required one an implicit one
-    bool internal = false;       // the pass's own texture (an output no graph may bind): the engine
-                                 // allocates and pools it like any transient, the pass uses it by name
+    bool internal = false;       // the pass's own texture or buffer (an output no graph may bind): the
+                                 // engine allocates and pools it like any transient, the pass uses it by name
+    bool persistent = false;     // internal: kept across frames, never pooled
     std::string doc;
     // Buffer outputs sized by the pass's resolved parameters (e.g. a volume's grid); takes
     // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
@@ -92,6 +94,9 @@ struct PinDecl {
 };
 // "in", "out", or "internal" for a pass's own texture (never bound in a graph): how listings name it.
 const char* direction_name(const PinDecl& p);
+
+// The GLSL define that holds a buffer pin's binding point: "density" -> "DENSITY_BINDING".
+std::string binding_define(const std::string& pin);
 
 class Pass;
 struct PassTypeInfo {
@@ -148,6 +153,12 @@ public:
     PassTypeBuilder& internal_texture(const std::string& name, const std::string& format, const std::string& doc,
                                       PinOptions o = {});
     PassTypeBuilder& input_buffer(const std::string& name, const std::string& doc, PinOptions o = {});
+    // A buffer only this pass uses (a statistics block, an index list it fills): never bound in a
+    // graph, allocated by the engine (ctx.buffer(name), ctx.grow_buffer(name, bytes)), on binding
+    // point ctx.buffer_binding(name) like any buffer pin. {.persistent = true} keeps its content
+    // from frame to frame (it is then never pooled).
+    PassTypeBuilder& internal_buffer(const std::string& name, const std::string& doc, BufferSize size,
+                                     PinOptions o = {});
     // Buffer outputs: the size (BufferSize), and {.optional = true} for one written only when bound.
     PassTypeBuilder& output_buffer(const std::string& name, const std::string& doc, BufferSize size,
                                    PinOptions o = {});
@@ -250,11 +261,23 @@ public:
     // u_<pin> the pins' textures (bound before each execute()). A uniform of that name whose
     // type does not fit the parameter is an error. Set what you derive yourself after that.
     ShaderProgram& program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+    // The storage-buffer binding point the engine gave buffer pin `pin` (declaration order among
+    // the pass's buffer pins, from 0). Every program() of the pass has it as the define
+    // binding_define(pin) ("nodes" -> NODES_BINDING), and the executor binds the pin's buffer
+    // there before each execute(): `layout(std430, binding = NODES_BINDING) buffer ...`.
+    int buffer_binding(const std::string& pin) const;
     // Sets u_<param> on a program made elsewhere (program() does this for its own).
     void bind_params(const ShaderProgram& prog) const;
 
+    // The buffer bound to `pin` as a buffer texture of texel format `format` (GL_RGBA32UI for
+    // uvec4 nodes), for texelFetch or imageLoad/imageStore; the engine owns the view and makes a
+    // new one when the buffer grows. Bind it with prog.bind_texture / bind_image.
+    GLuint buffer_texture(const std::string& pin, GLenum format);
+
     // Binds a framebuffer whose colour attachments are the given output pins (in order, as
-    // locations 0..n-1) and optional depth pin, and sets the viewport to their size.
+    // locations 0..n-1) and optional depth pin, and sets the viewport to their size. With no
+    // pins at all: a framebuffer with no attachments, of the output size (a raster whose
+    // fragments only write images or buffers).
     void bind_framebuffer(const std::vector<std::string>& color_pins, const std::string& depth_pin = "",
                           int mip = 0);
 

@@ -48,9 +48,19 @@ public:
         int unit = -1;        // samplers: texture unit; images: image unit
     };
     const std::vector<Uniform>& uniforms() const { return uniforms_; }
+    // Active uniform blocks, given binding points 0, 1, ... in GL's order (a layout(binding) in the
+    // source is replaced, as for units): bind a block's buffer at block_binding(name).
+    struct Block {
+        std::string name;  // the block's name, "LineKit"
+        int binding = -1;
+    };
+    const std::vector<Block>& uniform_blocks() const { return blocks_; }
+    // The binding point of uniform block `name`, or -1 when the program does not use it.
+    int block_binding(const std::string& name) const;
     const Uniform* uniform(const std::string& name) const;  // nullptr if not active
-    // Gives the sampler or image `name` a unit (glProgramUniform1i). Units start as 0, 1, 2, ...
-    // over the opaque uniforms in GL's order; a pass's context gives u_<pin> the pin's unit.
+    // Gives the sampler or image `name` a unit (glProgramUniform1i; an array its elements units
+    // `unit`, `unit`+1, ...). Units start as 0, 1, 2, ... over the opaque uniforms in GL's order,
+    // samplers and images each in their own range; a pass's context renumbers them per pass.
     void set_unit(const std::string& name, int unit);
     // Binds a texture to the unit of sampler `name` (no-op when the sampler is optimised away).
     // Throws naming the program when the program declares no such sampler (a typo).
@@ -75,6 +85,7 @@ private:
     const Uniform& opaque_uniform(const std::string& name) const;
     GLuint id_ = 0;
     std::vector<Uniform> uniforms_;
+    std::vector<Block> blocks_;
     mutable std::map<std::string, GLint> locs_;
     std::set<std::string> declared_;  // uniform names found in the expanded sources
     std::string files_;               // "a.vert, b.geom, c.frag", for messages

@@ -10,7 +10,7 @@ namespace lines = pathlet::lines;
 class FragmentProbe : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        prog_ = &lines::program(ctx, {"vao_fragment_probe.frag"}, lines::hooks(ctx), lines::VolumeAo::defines(ctx.params()));
+        prog_ = &lines::program(ctx, {"vao_fragment_probe.frag"}, lines::hooks(ctx), lines::VolumeAo::defines(ctx));
     }
     void execute(pathlet::PassContext& ctx) override {
         ctx.bind_framebuffer({"ao"}, "depth");

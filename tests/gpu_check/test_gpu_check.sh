@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# scripts/gpu-check.sh on llvmpipe, --quick: it makes a reference, runs the check against it and
+# leaves one tarball with every part a GPU run needs (limits, renders that match the reference,
+# both benches with their summaries, the render loop). What a GPU measures is not checked here;
+# that the script runs through and returns its results is.
+#   test_gpu_check.sh SOURCE_DIR PATHLET
+set -euo pipefail
+SRC=$1 PATHLET=$2
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+"$SRC/scripts/gpu-check.sh" --quick --pathlet "$PATHLET" --make-reference "$WORK/ref" >/dev/null 2>&1
+"$SRC/scripts/gpu-check.sh" --quick --pathlet "$PATHLET" --reference "$WORK/ref" "$WORK/out" >"$WORK/printed" 2>&1 ||
+  { cat "$WORK/printed"; echo "FAIL: the check exited non-zero"; exit 1; }
+tarballs=("$WORK"/out/gpu-check-*.tar.gz)
+[ ${#tarballs[@]} -eq 1 ] && [ -f "${tarballs[0]}" ] || { echo "FAIL: expected one tarball, got: ${tarballs[*]}"; exit 1; }
+tar -C "$WORK" -xzf "${tarballs[0]}"
+R=$(echo "$WORK"/gpu-check-*/)
+fail() { echo "FAIL: $*"; cat "$R/summary.txt"; exit 1; }
+for f in info-gl.txt info-gl-minimum.txt compare.txt summary.txt bench_window.json bench_all.json bench_window.txt; do
+  [ -s "$R/$f" ] || fail "$f missing or empty"
+done
+grep -q '^GL_MAX_IMAGE_UNITS 8$' "$R/info-gl-minimum.txt" || fail "info-gl-minimum.txt does not say 8 image units"
+graphs=$(ls "$SRC"/graphs/*.json | wc -l)
+[ "$(ls "$R"/renders/*.png | wc -l)" -eq "$graphs" ] || fail "not one render per shipped graph ($graphs)"
+[ "$(grep -c ' ok$' "$R/compare.txt")" -eq "$graphs" ] || fail "renders differ from the reference: $(cat "$R/compare.txt")"
+grep -q 'wall fps' "$R/bench_window.txt" || fail "the bench summary has no wall fps column"
+grep -Eq '^loop --no-images: [0-9]+ frames, .* [0-9.]+ fps$' "$R/summary.txt" || fail "no render-loop frame rate"
+grep -q '^renderer: llvmpipe' "$R/summary.txt" || fail "the summary does not name the renderer"
+echo "gpu-check --quick: every part present; $graphs renders match the reference"
