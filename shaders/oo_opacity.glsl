@@ -5,18 +5,17 @@
 #ifndef PATHLET_OO_OPACITY_GLSL
 #define PATHLET_OO_OPACITY_GLSL
 
+#include "line_hook_buffer.glsl"
 #include "line_hooks.glsl"
 #include "opacity_optimization.glsl"
-
-layout(std430, binding = HOOK_BUFFER_BINDING) readonly buffer OoOpacity { uint oo_opacity[]; };
 
 // Linear in arc length between the centres of the point's segments; 1 on a line the buffer
 // does not know (another data set's ids).
 float optimized_opacity(LinePoint p) {
-    if (uint(p.line_id) >= oo_lines(oo_opacity)) return 1.0;
-    OoPair s = oo_pair_of(oo_line(oo_opacity, p.line_id), p.arc);
-    uint at = oo_per_segment(oo_opacity);
-    return mix(uintBitsToFloat(oo_opacity[at + s.a]), uintBitsToFloat(oo_opacity[at + s.b]), s.t);
+    if (uint(p.line_id) >= oo_lines(hook_buffer)) return 1.0;
+    OoPair s = oo_pair_of(oo_line(hook_buffer, p.line_id), p.arc);
+    uint at = oo_per_segment(hook_buffer);
+    return mix(uintBitsToFloat(hook_buffer[at + s.a]), uintBitsToFloat(hook_buffer[at + s.b]), s.t);
 }
 
 #endif

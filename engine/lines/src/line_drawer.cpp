@@ -54,18 +54,6 @@ void check_block_layout(const ShaderProgram& prog) {
                               " in lines::Drawer; line_common.glsl and line_drawer.cpp disagree");
     }
 }
-// Whether a program has an active storage block at `binding`.
-bool reads_storage_binding(const ShaderProgram& prog, GLuint binding) {
-    GLint blocks = 0;
-    glGetProgramInterfaceiv(prog.id(), GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &blocks);
-    for (GLint i = 0; i < blocks; ++i) {
-        const GLenum prop = GL_BUFFER_BINDING;
-        GLint at = -1;
-        glGetProgramResourceiv(prog.id(), GL_SHADER_STORAGE_BLOCK, GLuint(i), 1, &prop, 1, nullptr, &at);
-        if (at == GLint(binding)) return true;
-    }
-    return false;
-}
 }  // namespace
 
 Hooks hooks(const PassContext& ctx) {
@@ -93,11 +81,12 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
     ShaderProgram& prog = ctx.program(files, all);
     check_block_layout(prog);
-    const PassTypeInfo* type = ctx.params().type();
-    if (type && type->pin("hook_buffer") && !ctx.connected("hook_buffer") &&
-        reads_storage_binding(prog, GLuint(ctx.buffer_binding("hook_buffer"))))
-        throw ShaderError("a hook of " + ctx.pass_name() + " reads the storage block at HOOK_BUFFER_BINDING, but the "
-                          "pass's input 'hook_buffer' is not connected (it would read whatever was bound last)");
+    // A hook that reads the pass's hook_buffer (line_hook_buffer.glsl) needs it connected: else
+    // the block would read whatever buffer was bound there last.
+    if (!ctx.connected("hook_buffer") &&
+        glGetProgramResourceIndex(prog.id(), GL_SHADER_STORAGE_BLOCK, "HookBuffer") != GL_INVALID_INDEX)
+        throw ShaderError("a hook of " + ctx.pass_name() + " reads the buffer HookBuffer (line_hook_buffer.glsl), but the "
+                          "pass's input 'hook_buffer' is not connected");
     return prog;
 }
 

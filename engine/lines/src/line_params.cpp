@@ -72,7 +72,7 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                     "width hook: a GLSL file defining float line_width_hook(LinePoint p), a multiplier of the "
                     "width (0..4); empty = full width")
         .input_buffer("hook_buffer",
-                      "data the hooks read beside LinePoint (a std430 storage block at HOOK_BUFFER_BINDING), "
+                      "data the hooks read beside LinePoint (line_hook_buffer.glsl: a uint array on the pin's binding), "
                       "e.g. opacity_blend's per-segment opacity for optimized_fade.glsl",
                       {.optional = true});
 }

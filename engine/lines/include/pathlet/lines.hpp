@@ -20,7 +20,7 @@
 // the head, 1 at the tail), the arc length from the head and from the tail, speed, line id,
 // its arc length along the whole line and its position in data coordinates. A hook that needs
 // data of its own (per line, per segment) reads the pass's optional input buffer `hook_buffer`
-// as a std430 storage block at HOOK_BUFFER_BINDING (e.g. shaders/oo_opacity.glsl).
+// through line_hook_buffer.glsl (a uint array; e.g. shaders/oo_opacity.glsl).
 // The kit derives the quad, tube normal and tube depth from the hooked width. Its own fades are
 // hook files: fade_opacity.frag (variant 2's end fade), fade_width.geom (variant 3's taper),
 // fade_core.frag, all on line_fade.glsl's parameters. A pass with resources of its own is a
