@@ -56,6 +56,12 @@ float Pathlines::speed_max() const {
     return m;
 }
 
+const PointArray* Pathlines::array(const std::string& name) const {
+    for (const PointArray& a : arrays)
+        if (a.name == name) return &a;
+    return nullptr;
+}
+
 void Pathlines::check_consistent(const std::string& what) const {
     const size_t n = position.size();
     if (time.size() != n)
@@ -63,6 +69,10 @@ void Pathlines::check_consistent(const std::string& what) const {
     if (velocity.size() != n)
         throw DataError(what + ": pathlines have " + std::to_string(n) + " positions but " + std::to_string(velocity.size()) +
                         " velocities");
+    for (const PointArray& a : arrays)
+        if (a.values.size() != n)
+            throw DataError(what + ": point array '" + a.name + "' has " + std::to_string(a.values.size()) +
+                            " values for " + std::to_string(n) + " points");
     for (size_t i = 0; i < lines.size(); ++i)
         if (uint64_t(lines[i].first) + lines[i].count > n)
             throw DataError(what + ": line " + std::to_string(i) + " (first " + std::to_string(lines[i].first) + ", count " +

@@ -234,6 +234,22 @@ def test_a_hook_path_of_yours_and_its_parameters(pathlet, scene, root, tmp_path,
                                     scene, sizes=["32x18"], frames=1, warmup=0))["segments"] > 0
 
 
+def test_transparency_numbers_are_the_commands(pathlet, cli, scene):
+    args = ["--time", "2:2.08:0.04", "--size", "96x54", "--transparency"]
+    out = cli("quality", "variant4_opacity", *args, "--phantom", "small").stdout
+    t = pathlet.quality("variant4_opacity", scene, time="2:2.08:0.04", size=(96, 54), transparency=True)
+    assert f"focus visibility {t['focus_visibility']:.4f} unoccluded {t['focus_unoccluded']:.4f}" in out
+    assert f"focus ink share {t['focus_ink_share']:.4f}" in out
+    assert f"context coverage {t['context_coverage']:.4f}" in out
+    assert f"alpha change mean {t['alpha_change_mean']:.5f} p95 {t['alpha_change_p95']:.5f}" in out
+    assert f"overflow {t['overflow']}" in out
+    assert 0 < t["focus_visibility"] < 1 and t["frames"] == 3 and t["located"] > 0.95 * t["fragments"]
+    assert pathlet.quality("variant1_lineao", scene, time="2:2.08:0.04", size=(32, 18),
+                           transparency=True)["not_measured"].startswith("no OIT")
+    with pytest.raises(ValueError, match="focus share"):
+        pathlet.quality("variant4_opacity", scene, time="2:2.08:0.04", size=(32, 18), transparency=True, focus_share=2)
+
+
 def test_render_keeps_the_commands_limits(pathlet, scene):
     with pytest.raises(ValueError, match=r"ssaa must be 1\.\.8 \(got 9\)"):
         pathlet.render("variant1_lineao", scene, time=2, size=(16, 9), ssaa=9)

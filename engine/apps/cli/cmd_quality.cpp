@@ -8,7 +8,10 @@
 #include "image_io.hpp"
 #include "renderer.hpp"
 
+#include "bench/experiment.hpp"
+#include "bench/run_experiment.hpp"
 #include "measure.hpp"
+#include "transparency.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -16,13 +19,56 @@
 namespace pathlet::cli {
 namespace {
 
+// --transparency --experiment: one row per run of the experiment (data set, graph, sweep value).
+int run_experiment_table(Runtime& rt, const std::string& file, quality::TransparencyOptions t, bool time_given,
+                         bool size_given, const SceneOptions& data) {
+    const bench::Experiment e = bench::load_experiment(file);
+    bench::graph_info(e, file);  // every graph exists, before any work
+    if (!time_given) t.time = e.time.empty() ? std::nullopt : std::optional(parse_time_range(e.time));
+    if (!size_given && !e.sizes.empty()) t.size = parse_size(e.sizes.front());
+    quality::check_transparency_options(t);
+    const size_t frames = t.time ? t.time->times().size() : 11;  // none: default_quality_time's 11
+    std::printf("%s: %zu frames at %dx%d per run, focus: the fastest %.0f %% of segments\n", e.name.c_str(),
+                frames * size_t(std::max(t.repeat, 1)), t.size.x, t.size.y, 100.0 * t.focus_share);
+    std::printf("%-28s %8s %8s %8s %8s %9s %8s %8s %8s\n", "run", "focus", "unocc", "ink", "context", "dalpha", "p95",
+                "overflow", "coverage");
+    size_t loaded = SIZE_MAX;
+    Scene scene;
+    for (const bench::Run& run : bench::plan_runs(e)) {
+        if (run.size != e.sizes.front()) continue;  // the measures at one size
+        if (data.given() && run.data != 0) continue;  // --data/--phantom replace the file's data sets
+        if (run.data != loaded) {
+            scene = e.data.empty() || data.given() ? data.load(true) : bench::load_data_set(e.data[run.data]);
+            loaded = run.data;
+        }
+        quality::TransparencyOptions o = t;
+        o.graph_path = resolve_graph_path(e.graphs[run.graph].graph);
+        o.sets = e.sets;
+        o.sets.insert(o.sets.end(), e.graphs[run.graph].sets.begin(), e.graphs[run.graph].sets.end());
+        if (!e.sweep.param.empty()) o.sets.push_back(e.sweep.param + "=" + run.sweep_value);
+        const quality::TransparencyResult r = quality::measure_transparency(rt, scene, o);
+        if (!r.not_measured.empty()) {
+            std::printf("%-28s not measured: %s\n", run.label.c_str(), r.not_measured.c_str());
+            continue;
+        }
+        std::printf("%-28s %8.4f %8.4f %8.4f %8.4f %9.5f %8.5f %8llu %8.4f\n", run.label.c_str(), r.focus_visibility,
+                    r.focus_unoccluded, r.focus_ink_share, r.context_coverage, r.alpha_change_mean, r.alpha_change_p95,
+                    (unsigned long long)r.overflow, r.pixel_coverage);
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 int run(const std::vector<std::string>& argv) {
     Args a("quality",
            "Measures AO quality (LineAO, volume AO, or per-fragment AO under OIT) at a fixed camera over a\n"
            "time range: temporal flicker (mean frame-to-frame change of AO where the same line is seen at\n"
            "the same depth) against the change of the geometry and against the change of the ray-traced AO,\n"
            "and the error (MAE, correlation) against a CPU ray-traced AO (Embree, tubes of the visible\n"
-           "pathlets, cosine-weighted rays, the pixel's own line left out) of the last frame, with an error image.");
+           "pathlets, cosine-weighted rays, the pixel's own line left out) of the last frame, with an error image.\n"
+           "With --transparency, what an OIT graph's transparency shows instead, on the fragments of its lists:\n"
+           "focus visibility (ink per footprint of the fastest segments, and their unoccluded share), focus ink\n"
+           "share, context coverage, the change of each segment's opacity between frames and list overflow.");
     std::string graph = "variant1_lineao";
     PluginOptions plugins;
     SceneOptions data;
@@ -34,7 +80,9 @@ int run(const std::vector<std::string>& argv) {
                 "animation times (frames at A, A+STEP, ... <= B); default: 11 frames 0.04 s apart from the middle of "
                 "the data's time span (the study phantom's 9:9.4:0.04)");
     declare_size(a, q.size, "output size in pixels");
-    bool images = false;
+    bool images = false, transparency = false;
+    quality::TransparencyOptions t;
+    std::string experiment;
     a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
         .option("flicker-rays", q.flicker_rays, "N",
                 "ray-traced AO of every frame, for the flicker against the reference's own change: rays per pixel "
@@ -45,22 +93,59 @@ int run(const std::vector<std::string>& argv) {
                 "flicker: largest change of linear depth that counts as unchanged")
         .option("out", q.work_dir, "DIR", "folder for the per-pixel error image")
         .flag("images", images,
-              "also write the last frame's AO and the ray-traced AO as grey images (NAME_ao.png, NAME_reference.png)");
+              "also write the last frame's AO and the ray-traced AO as grey images (NAME_ao.png, NAME_reference.png)")
+        .flag("transparency", transparency, "measure the transparency of an OIT graph instead of its AO")
+        .option("focus-share", t.focus_share, "F", "--transparency: the fastest share of the data's segments that is focus")
+        .option("visible", t.threshold, "TAU",
+                "--transparency: ink per footprint pixel from which a context segment counts as visible")
+        .option("repeat", t.repeat, "N", "--transparency: frames per time (N > 1 with one time: a frozen view)")
+        .option("experiment", experiment, "FILE",
+                "--transparency: every graph (and sweep value) of an experiment file on its data sets, one table "
+                "row each; its time and first size unless --time/--size are given")
+        .example("pathlet quality variant4_opacity --transparency --size 1280x720", "what the optimized opacity shows")
+        .example("pathlet quality --transparency --experiment graphs/experiments/transparency.json",
+                 "variant 2, a uniform opacity, a speed transfer function and variant 4 side by side");
     declare_sets(a, q.sets);
     plugins.declare(a);
     data.declare(a);
     if (!a.parse(argv)) return 0;
     q.graph_path = resolve_graph_path(graph);
+    t.graph_path = q.graph_path;
+    t.sets = q.sets;
+    t.size = q.size;
+    t.time = q.time;
     try {
-        quality::check_quality_options(q);
+        if (transparency) quality::check_transparency_options(t);
+        else quality::check_quality_options(q);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
 
+    const bool time_given = std::find(argv.begin(), argv.end(), "--time") != argv.end();
+    const bool size_given = std::find(argv.begin(), argv.end(), "--size") != argv.end();
+    if (!experiment.empty() && !transparency) throw UsageError("--experiment measures with --transparency only");
     Runtime rt;
     plugins.load(rt);
     q.sets = rt.user_sets(q.sets);
+    if (!experiment.empty()) return run_experiment_table(rt, experiment, t, time_given, size_given, data);
     Scene scene = data.load(true);
+    if (transparency) {
+        const quality::TransparencyResult r = quality::measure_transparency(rt, scene, t);
+        if (!r.not_measured.empty()) {
+            std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());
+            return 0;
+        }
+        std::printf("%s: %zu frames %dx%d, t=%.2f..%.2f, focus: the fastest %.0f %% of segments (speed >= %.4g)\n",
+                    r.graph.c_str(), r.frames, t.size.x, t.size.y, r.first_time, r.last_time, 100.0 * t.focus_share,
+                    r.focus_speed);
+        std::printf("focus visibility %.4f unoccluded %.4f\n", r.focus_visibility, r.focus_unoccluded);
+        std::printf("focus ink share %.4f\n", r.focus_ink_share);
+        std::printf("context coverage %.4f\n", r.context_coverage);
+        std::printf("alpha change mean %.5f p95 %.5f\n", r.alpha_change_mean, r.alpha_change_p95);
+        std::printf("overflow %llu\n", (unsigned long long)r.overflow);
+        std::printf("pixel coverage %.4f\n", r.pixel_coverage);
+        return 0;
+    }
     const quality::QualityResult r = quality::measure_quality(rt, scene, q);
     if (!r.not_measured.empty()) {
         std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());

@@ -18,6 +18,7 @@
 #include "io/raw_polylines.hpp"
 #include "io/units.hpp"
 #include "measure.hpp"
+#include "transparency.hpp"
 #include "renderer.hpp"
 #include "util/output_check.hpp"
 #include "util/text.hpp"
@@ -481,6 +482,47 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
     return d;
 }
 
+py::dict run_transparency(const std::string& graph, const std::vector<std::string>& sets, const SceneRef& scene,
+                          const std::string& time, const std::string& size, int repeat, double focus_share,
+                          double visible) {
+    quality::TransparencyOptions t;
+    t.graph_path = graph;
+    t.sets = sets;
+    t.size = parse_size(size);
+    if (!time.empty()) t.time = parse_time_range(time);
+    t.repeat = repeat;
+    t.focus_share = focus_share;
+    t.threshold = visible;
+    quality::check_transparency_options(t);  // the command's limits
+    quality::TransparencyResult r;
+    {
+        py::gil_scoped_release nogil;
+        r = GlThread::get().call([&](Runtime& rt) { return quality::measure_transparency(rt, *scene, t); });
+    }
+    py::dict d;
+    d["graph"] = r.graph;
+    if (!r.not_measured.empty()) {
+        d["not_measured"] = r.not_measured;
+        return d;
+    }
+    d["frames"] = r.frames;
+    d["times"] = py::make_tuple(r.first_time, r.last_time);
+    d["focus_visibility"] = r.focus_visibility;
+    d["focus_unoccluded"] = r.focus_unoccluded;
+    d["focus_ink_share"] = r.focus_ink_share;
+    d["context_coverage"] = r.context_coverage;
+    d["alpha_change_mean"] = r.alpha_change_mean;
+    d["alpha_change_p95"] = r.alpha_change_p95;
+    d["alpha_change_max"] = r.alpha_change_max;
+    d["max_alpha_change_per_frame"] = r.max_alpha_change_per_frame;
+    d["overflow"] = r.overflow;
+    d["pixel_coverage"] = r.pixel_coverage;
+    d["focus_speed"] = r.focus_speed;
+    d["fragments"] = r.fragments;
+    d["located"] = r.located;
+    return d;
+}
+
 }  // namespace
 }  // namespace pathlet::python
 
@@ -588,6 +630,11 @@ PYBIND11_MODULE(_pathlet, m) {
                         float max_distance, float depth_tolerance, const std::string& work_dir) {
         return run_quality(graph, sets, s, time, size, rays, flicker_rays, own_line, max_distance, depth_tolerance,
                            work_dir);
+    });
+    m.def("transparency", [](const std::string& graph, const std::vector<std::string>& sets, const std::shared_ptr<Scene>& s,
+                             const std::string& time, const std::string& size, int repeat, double focus_share,
+                             double visible) {
+        return run_transparency(graph, sets, s, time, size, repeat, focus_share, visible);
     });
     // The files and tables `pathlet bench` writes, from a report (results.json's content).
     m.def("summary_csv", [](const std::string& report) { return cli::bench::summary_csv(json::parse(report)); });

@@ -124,6 +124,19 @@ Pathlines assemble_pathlines(RawPolylines&& raw, const LoadOptions& opts, LoadRe
         if (t) out.time[k] = t->values[i];
         if (v) out.velocity[k] = {v->values[3 * i], v->values[3 * i + 1], v->values[3 * i + 2]};
     }
+    // The other point arrays travel with their points (a vector as its magnitude).
+    for (const RawArray& a : raw.point_arrays) {
+        if (&a == t || &a == v || a.components < 1) continue;
+        PointArray pa{a.name, std::vector<float>(total)};
+        const size_t c = size_t(a.components);
+        for (size_t k = 0; k < total; ++k) {
+            const float* x = &a.values[size_t(raw.connectivity[k]) * c];
+            double m = 0.0;
+            for (size_t j = 0; j < c; ++j) m += double(x[j]) * double(x[j]);
+            pa.values[k] = c == 1 ? x[0] : float(std::sqrt(m));
+        }
+        out.arrays.push_back(std::move(pa));
+    }
     for (size_t l = 0; l + 1 < raw.offsets.size(); ++l)
         out.lines.push_back({uint32_t(raw.offsets[l]), uint32_t(raw.offsets[l + 1] - raw.offsets[l])});
     out.units = raw.units;
@@ -184,6 +197,9 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
     const bool has_time = !pl.time.empty(), has_vel = !pl.velocity.empty();
     if ((has_time && pl.time.size() != pl.position.size()) || (has_vel && pl.velocity.size() != pl.position.size()))
         fail_at(file, "byte 0", "time/velocity sizes disagree with the point count");
+    for (const PointArray& a : pl.arrays)
+        if (a.values.size() != pl.position.size())
+            fail_at(file, "byte 0", "point array '" + a.name + "' size disagrees with the point count");
     for (auto& r : pl.lines)
         if (uint64_t(r.first) + r.count > pl.position.size())
             fail_at(file, "byte 0", "line range beyond the point count");
@@ -200,6 +216,7 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
 
     Counts c;
     Pathlines out;
+    for (const PointArray& a : pl.arrays) out.arrays.push_back({a.name, {}});
     out.position.reserve(pl.position.size());
     if (has_time) out.time.reserve(pl.time.size());
     if (has_vel) out.velocity.reserve(pl.velocity.size());
@@ -230,6 +247,7 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
             out.position.push_back(pl.position[k]);
             if (has_time) out.time.push_back(pl.time[k]);
             if (has_vel) out.velocity.push_back(pl.velocity[k]);
+            for (size_t a = 0; a < pl.arrays.size(); ++a) out.arrays[a].values.push_back(pl.arrays[a].values[k]);
         }
         size_t n = out.position.size() - first;
         if (n < 2) {
@@ -237,6 +255,7 @@ void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file
             out.position.resize(first);
             if (has_time) out.time.resize(first);
             if (has_vel) out.velocity.resize(first);
+            for (PointArray& a : out.arrays) a.values.resize(first);
         } else {
             out.lines.push_back({uint32_t(first), uint32_t(n)});
         }

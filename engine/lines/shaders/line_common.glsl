@@ -14,6 +14,9 @@ vec3 line_safe_normalize(vec3 v, vec3 fallback) {
     return l2 > 1e-24 ? v * inversesqrt(l2) : fallback;
 }
 
+// A view-space point in data coordinates (the view matrix is a rotation and a translation).
+vec3 line_data_position(vec3 pos_view) { return transpose(mat3(u_view)) * (pos_view - u_view[3].xyz); }
+
 // Members of the stage interfaces (a block name must match across stages; members too).
 // position and tangent are in view space; arc is the arc length from the line's first point.
 // point: the data point's index (gl_VertexID), so the GS knows how many data segments a
@@ -21,9 +24,9 @@ vec3 line_safe_normalize(vec3 v, vec3 fallback) {
 #define LINE_VERTEX_MEMBERS vec3 position; float time; float speed; float arc; vec3 tangent; flat int line_id; \
     flat int point;
 // pos_view: point on the flat quad; side: unit vector across it (s = +1 side); s: -1..1
-// across the width; half_width: the hooked half width here; age, arc_head, arc_tail: LinePoint.
+// across the width; half_width: the hooked half width here; age, arc_head, arc_tail, arc: LinePoint.
 #define LINE_FRAGMENT_MEMBERS vec3 pos_view; vec3 side; vec3 tangent; float s; float speed; float time; \
-    float age; float arc_head; float arc_tail; float half_width; flat int line_id;
+    float age; float arc_head; float arc_tail; float arc; float half_width; flat int line_id;
 
 #ifdef LINE_STAGE_VERTEX
 layout(location = 0) in vec3 a_position;
@@ -56,8 +59,9 @@ out LineFragment { LINE_FRAGMENT_MEMBERS } g_out;
 // geometry shaders no storage blocks at all (GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS may be 0).
 uniform samplerBuffer u_line_pathlets;
 
-// The hook's view of a point at data time `time` and arc length `arc` on line `id`.
-LinePoint line_point(float time, float arc, float speed, int id) {
+// The hook's view of a point at view-space position `pos_view`, data time `time` and arc length
+// `arc` on line `id`.
+LinePoint line_point(vec3 pos_view, float time, float arc, float speed, int id) {
     vec4 pl = texelFetch(u_line_pathlets, id);
     LinePoint p;
     p.time = time;
@@ -66,6 +70,8 @@ LinePoint line_point(float time, float arc, float speed, int id) {
     p.arc_from_tail = max(arc - pl.y, 0.0);
     p.speed = speed;
     p.line_id = id;
+    p.arc = arc;
+    p.position = line_data_position(pos_view);
     return p;
 }
 #endif
@@ -143,6 +149,8 @@ LineFrag line_fragment() {
     f.point.arc_from_tail = max(g_in.arc_tail, 0.0);
     f.point.speed = g_in.speed;
     f.point.line_id = g_in.line_id;
+    f.point.arc = g_in.arc;
+    f.point.position = line_data_position(g_in.pos_view);
     return f;
 }
 

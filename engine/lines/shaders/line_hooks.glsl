@@ -29,6 +29,9 @@ struct LinePoint {
     float arc_from_tail;  // arc length from the pathlet's tail; head + tail = the pathlet's length
     float speed;          // |velocity|, data units per second
     int line_id;          // index of the line in the data set
+    float arc;            // arc length from the line's first point: where on its line the point is,
+                          // whatever the window (per-segment data of a line, e.g. optimized opacity)
+    vec3 position;        // data coordinates (on the quad: within half a line width of the line)
 };
 
 #endif

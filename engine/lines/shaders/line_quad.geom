@@ -46,6 +46,7 @@ void emit_end(vec3 p, vec3 t_view, LinePoint lp) {
         g_out.age = lp.age;
         g_out.arc_head = lp.arc_from_head;
         g_out.arc_tail = lp.arc_from_tail;
+        g_out.arc = lp.arc;
         g_out.half_width = hw;
         g_out.line_id = lp.line_id;
         gl_Position = u_proj * vec4(g_out.pos_view, 1.0);
@@ -74,8 +75,8 @@ void main() {
     for (int k = 0; k <= pieces; ++k) {
         float f = mix(fa, fb, float(k) / float(pieces));
         vec3 t = line_safe_normalize(mix(v_in[0].tangent, v_in[1].tangent, f), v_in[k == 0 ? 0 : 1].tangent);
-        emit_end(mix(p0, p1, f), t, line_point(mix(t0, t1, f), mix(v_in[0].arc, v_in[1].arc, f),
-                                               mix(v_in[0].speed, v_in[1].speed, f), id));
+        vec3 p = mix(p0, p1, f);
+        emit_end(p, t, line_point(p, mix(t0, t1, f), mix(v_in[0].arc, v_in[1].arc, f), mix(v_in[0].speed, v_in[1].speed, f), id));
     }
     EndPrimitive();
 }

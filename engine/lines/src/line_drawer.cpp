@@ -81,6 +81,12 @@ ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragmen
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
     ShaderProgram& prog = ctx.program(files, all);
     check_block_layout(prog);
+    // A hook that reads the pass's hook_buffer (line_hook_buffer.glsl) needs it connected: else
+    // the block would read whatever buffer was bound there last.
+    if (!ctx.connected("hook_buffer") &&
+        glGetProgramResourceIndex(prog.id(), GL_SHADER_STORAGE_BLOCK, "HookBuffer") != GL_INVALID_INDEX)
+        throw ShaderError("a hook of " + ctx.pass_name() + " reads the buffer HookBuffer (line_hook_buffer.glsl), but the "
+                          "pass's input 'hook_buffer' is not connected");
     return prog;
 }
 

@@ -71,7 +71,11 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                     "line_color_hook(vec4 rgba, LinePoint p); empty = the colour map as it is, opaque")
         .param_hook("width_hook", "width", defaults.width,
                     "width hook: a GLSL file defining float line_width_hook(LinePoint p), a multiplier of the "
-                    "width (0..4); empty = full width");
+                    "width (0..4); empty = full width")
+        .input_buffer("hook_buffer",
+                      "data the hooks read beside LinePoint (line_hook_buffer.glsl: a uint array on the pin's binding), "
+                      "e.g. opacity_blend's per-segment opacity for optimized_fade.glsl",
+                      {.optional = true});
 }
 
 PassTypeBuilder& declare_gbuffer_outputs(PassTypeBuilder& b, bool optional) {

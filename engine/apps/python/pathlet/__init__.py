@@ -425,15 +425,25 @@ def run_experiment(path, scene=None, *, out=None, sizes=None, time=None, frames=
 # ---- quality ----------------------------------------------------------------------------------
 
 def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=256,
-            include_own_line=False, max_distance=10.0, depth_tolerance=0.002):
+            include_own_line=False, max_distance=10.0, depth_tolerance=0.002, transparency=False,
+            focus_share=0.1, visible=0.05, repeat=1):
     """``pathlet quality`` as numbers (time None: 11 frames 0.04 s apart from the middle of the
     data's span, said on stderr; the study phantom's 9:9.4:0.04): flicker (mean |dAO| where the same line stays),
     geometry_change, with flicker_rays > 0 reference_change and flicker_excess (how much the
     ray-traced AO changes at those pixels, and the AO's change beyond it), mae and correlation
     against a ray-traced AO of the last frame, and the images error (|error| per pixel),
     error_image (RGBA, as the command writes it), ao, reference and line_id. A graph without
-    AO gives {"graph", "not_measured": why}."""
+    AO gives {"graph", "not_measured": why}.
+
+    transparency=True: ``pathlet quality --transparency`` instead, for an OIT graph:
+    focus_visibility, focus_unoccluded, focus_ink_share, context_coverage, alpha_change_mean,
+    alpha_change_p95, alpha_change_max, max_alpha_change_per_frame, overflow, pixel_coverage
+    (focus: the fastest focus_share of the data's segments; a context segment counts as seen
+    with ink per footprint >= visible; repeat frames per time, > 1 for a frozen view)."""
     g = _graph(graph)
+    if transparency:
+        return _core().transparency(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), int(repeat),
+                                    float(focus_share), float(visible))
     with tempfile.TemporaryDirectory(prefix="pathlet_quality_") as work:
         return _core().quality(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), int(rays),
                                int(flicker_rays), bool(include_own_line), float(max_distance),

@@ -21,7 +21,10 @@
 // #include "line_hooks.glsl" still work. Compile errors name the hook's file and line.
 //
 // LinePoint (shaders/line_hooks.glsl) carries the point's time, its age in the window (0 at
-// the head, 1 at the tail), the arc length from the head and from the tail, speed, line id.
+// the head, 1 at the tail), the arc length from the head and from the tail, speed, line id,
+// its arc length along the whole line and its position in data coordinates. A hook that needs
+// data of its own (per line, per segment) reads the pass's optional input buffer `hook_buffer`
+// through line_hook_buffer.glsl (a uint array; e.g. shaders/oo_opacity.glsl).
 // The kit derives the quad, tube normal and tube depth from the hooked width. Its own fades are
 // hook files: fade_opacity.frag (variant 2's end fade), fade_width.geom (variant 3's taper),
 // fade_core.frag, all on line_fade.glsl's parameters. A pass with resources of its own is a
@@ -55,8 +58,8 @@ const std::vector<std::string>& colormaps();
 
 // The shared line parameters: window, line_width, width_factor, halo, halo_min_px, halo_color,
 // halo_depth, colormap, speed_min, speed_max, background, lod, cull, and the hook files
-// color_hook and width_hook (their defaults for this pass type in `defaults`). Declared here
-// once for every line pass.
+// color_hook and width_hook (their defaults for this pass type in `defaults`), and the optional
+// input buffer hook_buffer for the hooks. Declared here once for every line pass.
 PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults = {});
 // `window` alone, and `line_width` with `width_factor` (the first three of the above), for
 // passes that follow the pathlets or their tubes without drawing them (line_density, volume_ao).

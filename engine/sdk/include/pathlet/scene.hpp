@@ -36,6 +36,14 @@ struct Units {
     bool operator==(const Units&) const = default;
 };
 
+// A point array of a data file beside time and velocity (pressure, vorticity, ...): one value
+// per point, a vector array as its magnitude. Importers keep them with their points through
+// repair; the native .pathlet cache does not store them.
+struct PointArray {
+    std::string name;
+    std::vector<float> values;
+};
+
 // Pathlines: per point position, time and velocity; lines are ranges of points.
 // Time increases along each line (importers sort or reject otherwise).
 struct Pathlines {
@@ -43,6 +51,7 @@ struct Pathlines {
     std::vector<float> time;
     std::vector<glm::vec3> velocity;
     std::vector<LineRange> lines;
+    std::vector<PointArray> arrays;  // the file's other point arrays, one value per point
     Units units;
     // Streamlines without a time of their own (tractography, centrelines): `time` is a
     // pseudo-time along the arc length and `velocity` the tangent at a constant pseudo-speed;
@@ -58,6 +67,7 @@ struct Pathlines {
     float time_max() const;
     float speed_min() const;          // |velocity|, 0 when empty
     float speed_max() const;
+    const PointArray* array(const std::string& name) const;  // nullptr when there is none of that name
     // Throws DataError naming `what` if sizes disagree or a range is out of bounds.
     void check_consistent(const std::string& what) const;
 };

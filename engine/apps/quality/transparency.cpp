@@ -1,0 +1,317 @@
+#include "transparency.hpp"
+
+#include "camera.hpp"
+#include "executor.hpp"
+#include "graph/graph_model.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+
+namespace pathlet::quality {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr uint32_t kEnd = 0xFFFFFFFFu;  // OIT_END and OO_END
+constexpr double kOpaque = 0.99;        // resolve_list stops compositing here
+
+// The resources of the graph's OIT and of its opacity optimization, by name.
+struct Oit {
+    std::string why_not;
+    std::string resolve, fill;                      // pass names
+    std::string heads, nodes, counter;              // the final lists
+    std::vector<std::string> oo_lists, oo_targets;  // opacity_lists' lists, opacity_resolve's targets
+};
+
+std::string bound(const json& pass, const char* side, const char* pin) {
+    if (!pass.contains(side) || !pass[side].contains(pin) || !pass[side][pin].is_string()) return "";
+    return pass[side][pin].get<std::string>();
+}
+
+Oit find_oit(const json& g) {
+    Oit o;
+    for (const json& p : g["passes"])
+        if (p.value("type", "") == "resolve_list" && p.value("enabled", true)) {
+            o.resolve = p.value("name", "");
+            o.heads = bound(p, "inputs", "heads");
+            o.nodes = bound(p, "inputs", "nodes");
+            break;
+        }
+    if (o.resolve.empty()) {
+        o.why_not = "no OIT in this graph (no resolve_list pass)";
+        return o;
+    }
+    for (const json& p : g["passes"])
+        if (bound(p, "outputs", "nodes") == o.nodes && !o.nodes.empty()) {
+            o.fill = p.value("name", "");
+            o.counter = bound(p, "inputs", "counter");
+        }
+    if (o.heads.empty() || o.nodes.empty() || o.counter.empty() || o.heads.find('.') != std::string::npos ||
+        o.nodes.find('.') != std::string::npos)
+        o.why_not = "resolve_list's heads and nodes (and the counter of the pass that fills them) must be named resources";
+    for (const json& p : g["passes"]) {
+        if (p.value("type", "") == "opacity_lists" && !bound(p, "outputs", "lists").empty())
+            o.oo_lists.push_back(bound(p, "outputs", "lists"));
+        if (p.value("type", "") == "opacity_resolve" && !bound(p, "outputs", "targets").empty())
+            o.oo_targets.push_back(bound(p, "outputs", "targets"));
+    }
+    return o;
+}
+
+template <class T>
+std::vector<T> read_buffer(const Buffer& b, size_t count, size_t offset_bytes = 0) {
+    std::vector<T> v(count);
+    if (count) glGetNamedBufferSubData(b.id, GLintptr(offset_bytes), GLsizeiptr(count * sizeof(T)), v.data());
+    return v;
+}
+
+float bits_float(uint32_t u) {
+    float f;
+    std::memcpy(&f, &u, 4);
+    return f;
+}
+
+// Where each line's window lies: per line the first and last point of the segments that
+// overlap [t0, t1] (every point when the lines are drawn whole).
+struct WindowRanges {
+    std::vector<uint32_t> first, last;  // point indices, last >= first + 1 for a drawable piece
+};
+WindowRanges window_ranges(const Pathlines& pl, double t0, double t1, bool whole) {
+    WindowRanges w;
+    for (const LineRange& r : pl.lines) {
+        uint32_t a = r.first, b = r.first + (r.count ? r.count - 1 : 0);
+        if (!whole && r.count >= 2) {
+            const float* t = pl.time.data();
+            const uint32_t e = r.first + r.count;
+            uint32_t lo = uint32_t(std::lower_bound(t + r.first, t + e, float(t0)) - t);
+            uint32_t hi = uint32_t(std::upper_bound(t + r.first, t + e, float(t1)) - t);
+            a = lo > r.first ? lo - 1 : r.first;
+            b = std::min(hi, e - 1);
+            if (hi == r.first || lo == e) b = a;  // the window misses the line
+        }
+        w.first.push_back(a);
+        w.last.push_back(b);
+    }
+    return w;
+}
+
+// The data segment (its first point) of line `line` nearest to `p` within the window.
+int64_t nearest_segment(const Pathlines& pl, const WindowRanges& w, uint32_t line, const glm::vec3& p) {
+    if (line >= w.first.size() || w.last[line] <= w.first[line]) return -1;
+    double best = std::numeric_limits<double>::infinity();
+    int64_t at = -1;
+    for (uint32_t k = w.first[line]; k < w.last[line]; ++k) {
+        const glm::vec3 a = pl.position[k], d = pl.position[k + 1] - a;
+        const float dd = glm::dot(d, d);
+        const float s = dd > 0.0f ? std::clamp(glm::dot(p - a, d) / dd, 0.0f, 1.0f) : 0.0f;
+        const glm::vec3 q = a + s * d - p;
+        const double dist = glm::dot(q, q);
+        if (dist < best) best = dist, at = k;
+    }
+    return at;
+}
+
+}  // namespace
+
+void SegmentSums::clear() {
+    for (uint32_t s : seen) ink[s] = unoccluded[s] = alpha[s] = 0.0, footprint[s] = 0;
+    seen.clear();
+}
+
+double composite_pixel(std::vector<Fragment>& frags, int keep, SegmentSums& sums) {
+    std::sort(frags.begin(), frags.end(), [](const Fragment& a, const Fragment& b) {
+        return a.depth != b.depth ? a.depth < b.depth : (a.line != b.line ? a.line < b.line : a.color < b.color);
+    });
+    double alpha = 0.0;
+    const size_t n = std::min(frags.size(), size_t(std::max(keep, 0)));
+    for (size_t k = 0; k < n; ++k) {
+        const Fragment& f = frags[k];
+        const double transmittance = 1.0 - alpha;
+        const double ink = alpha < kOpaque ? transmittance * f.alpha : 0.0;
+        if (f.segment >= 0 && size_t(f.segment) < sums.footprint.size()) {
+            const size_t s = size_t(f.segment);
+            if (sums.footprint[s]++ == 0) sums.seen.push_back(uint32_t(s));
+            sums.ink[s] += ink;
+            sums.unoccluded[s] += transmittance;
+            sums.alpha[s] += f.alpha;
+        }
+        alpha += ink;
+    }
+    return alpha;
+}
+
+void check_transparency_options(const TransparencyOptions& q) {
+    if (q.time && q.time->times().size() * size_t(std::max(q.repeat, 1)) < 2)
+        throw std::invalid_argument("time must give at least two frames (A:B:STEP), or repeat one");
+    if (!(q.focus_share > 0.0 && q.focus_share < 1.0))
+        throw std::invalid_argument("focus share must lie in (0, 1) (got " + std::to_string(q.focus_share) + ")");
+    if (!(q.threshold > 0.0 && q.threshold <= 1.0))
+        throw std::invalid_argument("the visibility threshold must lie in (0, 1] (got " + std::to_string(q.threshold) + ")");
+}
+
+TransparencyResult measure_transparency(Runtime& rt, const Scene& scene, const TransparencyOptions& q) {
+    check_transparency_options(q);
+    TransparencyResult res;
+    const json full = expanded_graph_json(q.graph_path);
+    res.graph = full.value("name", fs::path(q.graph_path).stem().string());
+    const Oit oit = find_oit(full);
+    if (!oit.why_not.empty()) {
+        res.not_measured = oit.why_not;
+        return res;
+    }
+    const Pathlines& pl = scene.lines;
+    // Focus: the data segments whose mean speed is in the top focus_share, over the whole data.
+    std::vector<float> speed(pl.position.size(), -1.0f);
+    std::vector<float> all;
+    for (const LineRange& r : pl.lines)
+        for (uint32_t k = r.first; k + 1 < r.first + r.count; ++k) {
+            speed[k] = 0.5f * (glm::length(pl.velocity[k]) + glm::length(pl.velocity[k + 1]));
+            all.push_back(speed[k]);
+        }
+    if (!all.empty()) {
+        const size_t i = std::min(all.size() - 1, size_t((1.0 - q.focus_share) * double(all.size())));
+        std::nth_element(all.begin(), all.begin() + std::ptrdiff_t(i), all.end());
+        res.focus_speed = all[i];
+    }
+    auto is_focus = [&](size_t s) { return speed[s] >= float(res.focus_speed); };
+
+    RenderOptions opt;
+    opt.graph_path = q.graph_path;
+    opt.sets = q.sets;
+    opt.size = q.size;
+    opt.time = q.time ? *q.time : default_quality_time(scene);
+    if (!q.time) std::fprintf(stderr, "note: %s\n", picked_time_note(opt.time, scene, "11 frames from the middle").c_str());
+    opt.repeat = std::max(q.repeat, 1);
+    opt.write_images = false;
+    opt.quiet = true;
+    opt.warmup = 1;
+    opt.keep = {oit.heads, oit.nodes, oit.counter};
+    opt.keep.insert(opt.keep.end(), oit.oo_lists.begin(), oit.oo_lists.end());
+    opt.keep.insert(opt.keep.end(), oit.oo_targets.begin(), oit.oo_targets.end());
+    std::vector<double> times;
+    for (double t : opt.time.times())
+        for (int k = 0; k < opt.repeat; ++k) times.push_back(t);
+    const Camera cam = frame_bounds(scene.bounds(), q.size);
+    const glm::mat4 inv_view = glm::inverse(cam.view);
+
+    SegmentSums sums(pl.position.size());
+    std::vector<float> prev_alpha(pl.position.size(), -1.0f), cur_alpha(pl.position.size(), -1.0f);
+    std::vector<uint32_t> prev_seen;
+    std::vector<double> changes;
+    double focus_ink = 0, focus_unocc = 0, all_ink = 0, coverage_sum = 0;
+    size_t focus_fp = 0, context_seen = 0, context_visible = 0, covered = 0;
+    std::vector<Fragment> frags;
+
+    render(rt, scene, opt, [&](const Executor& ex, size_t frame) {
+        const double t = times[std::min(frame, times.size() - 1)];
+        if (frame == 0) res.first_time = t;
+        res.last_time = t;
+        // The graph's window and the resolve's K, as compiled.
+        double window = 1.0;
+        int keep = 32;
+        for (const CompiledPass& p : ex.graph().passes) {
+            if (p.name == oit.fill && p.params.contains("window")) window = p.params["window"].get<double>();
+            if (p.name == oit.resolve && p.params.contains("max_fragments")) keep = p.params["max_fragments"].get<int>();
+        }
+        const bool whole = !(window > 0.0) || pl.timeless;
+        const WindowRanges wr = window_ranges(pl, t - window, t, whole);
+
+        const Texture heads_tex = ex.texture(oit.heads);
+        const Buffer nodes_buf = ex.buffer(oit.nodes), counter_buf = ex.buffer(oit.counter);
+        const size_t capacity = nodes_buf.bytes / 16;
+        const uint32_t count = read_buffer<uint32_t>(counter_buf, 1)[0];
+        if (count > capacity) res.overflow += count - capacity;
+        const std::vector<glm::uvec4> nodes = read_buffer<glm::uvec4>(nodes_buf, std::min<size_t>(count, capacity));
+        std::vector<uint32_t> heads(size_t(heads_tex.width) * size_t(heads_tex.height));
+        glGetTextureImage(heads_tex.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(heads.size() * 4), heads.data());
+        // Opacity optimization's own lists: their overflow biases its opacities.
+        for (const std::string& name : oit.oo_lists) {
+            const std::vector<uint32_t> h = read_buffer<uint32_t>(ex.buffer(name), 8);
+            if (h[6] > h[5]) res.overflow += h[6] - h[5];
+        }
+        for (const std::string& name : oit.oo_targets) res.overflow += read_buffer<uint32_t>(ex.buffer(name), 8)[5];
+
+        sums.clear();
+        const float span = cam.far_plane - cam.near_plane;
+        for (int y = 0; y < heads_tex.height; ++y)
+            for (int x = 0; x < heads_tex.width; ++x) {
+                frags.clear();
+                size_t guard = 0;
+                for (uint32_t i = heads[size_t(y) * size_t(heads_tex.width) + size_t(x)]; i != kEnd && i < nodes.size() &&
+                                                                                       guard < nodes.size();
+                     i = nodes[i].z, ++guard) {
+                    const glm::uvec4 n = nodes[i];
+                    Fragment f;
+                    f.depth = bits_float(n.y);
+                    f.line = n.w;
+                    f.color = n.x;
+                    f.alpha = float(n.x >> 24) / 255.0f;
+                    // The fragment's point: its pixel centre at its linear depth (GL rows bottom-up).
+                    const float nx = (x + 0.5f) / float(heads_tex.width) * 2.0f - 1.0f;
+                    const float ny = (y + 0.5f) / float(heads_tex.height) * 2.0f - 1.0f;
+                    const float eye = cam.near_plane + f.depth * span;
+                    const glm::vec3 p(inv_view * glm::vec4(nx * eye / cam.proj[0][0], ny * eye / cam.proj[1][1], -eye, 1.0f));
+                    f.segment = nearest_segment(pl, wr, f.line, p);
+                    res.located += f.segment >= 0;
+                    frags.push_back(f);
+                }
+                if (frags.empty()) continue;
+                res.fragments += frags.size();
+                if (frags.size() > size_t(keep)) res.overflow += frags.size() - size_t(keep);
+                coverage_sum += composite_pixel(frags, keep, sums);
+                ++covered;
+            }
+        // The frame's per-segment measures and the change of each segment's mean opacity.
+        double frame_max = 0.0;
+        for (uint32_t s : sums.seen) {
+            const double a = sums.footprint[s];
+            all_ink += sums.ink[s];
+            if (is_focus(s)) {
+                focus_ink += sums.ink[s];
+                focus_unocc += sums.unoccluded[s];
+                focus_fp += sums.footprint[s];
+            } else {
+                ++context_seen;
+                context_visible += sums.ink[s] / a >= q.threshold;
+            }
+            cur_alpha[s] = float(sums.alpha[s] / a);
+            if (prev_alpha[s] >= 0.0f) {
+                const double d = std::fabs(double(cur_alpha[s]) - double(prev_alpha[s]));
+                changes.push_back(d);
+                frame_max = std::max(frame_max, d);
+            }
+        }
+        if (frame > 0) res.max_alpha_change_per_frame.push_back(frame_max);
+        for (uint32_t s : prev_seen) prev_alpha[s] = -1.0f;
+        prev_seen = sums.seen;
+        for (uint32_t s : prev_seen) prev_alpha[s] = cur_alpha[s], cur_alpha[s] = -1.0f;
+        ++res.frames;
+    });
+
+    res.focus_footprint = focus_fp;
+    res.context_seen = context_seen;
+    res.focus_visibility = focus_fp ? focus_ink / double(focus_fp) : 0.0;
+    res.focus_unoccluded = focus_fp ? focus_unocc / double(focus_fp) : 0.0;
+    res.focus_ink_share = all_ink > 0.0 ? focus_ink / all_ink : 0.0;
+    res.context_coverage = context_seen ? double(context_visible) / double(context_seen) : 0.0;
+    res.pixel_coverage = covered ? coverage_sum / double(covered) : 0.0;
+    if (!changes.empty()) {
+        double sum = 0.0;
+        for (double d : changes) sum += d;
+        res.alpha_change_mean = sum / double(changes.size());
+        const size_t i = std::min(changes.size() - 1, size_t(0.95 * double(changes.size())));
+        std::nth_element(changes.begin(), changes.begin() + std::ptrdiff_t(i), changes.end());
+        res.alpha_change_p95 = changes[i];
+        res.alpha_change_max = *std::max_element(changes.begin(), changes.end());
+    }
+    return res;
+}
+
+}  // namespace pathlet::quality

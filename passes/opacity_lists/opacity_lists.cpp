@@ -1,0 +1,239 @@
+// opacity_lists: opacity optimization's first pass (Günther et al. 2013; the decoupled form of
+// Günther, Theisel, Gross 2017). The pathlets of the time window, drawn through the line kit at
+// a reduced resolution, become per-pixel lists of (segment, depth, importance) for
+// opacity_resolve. A segment is a piece of a line of about segment_length line widths, keyed to
+// the line and its arc length (shaders/opacity_optimization.glsl), so the opacity found for it
+// stays with the pathline as the window moves.
+//
+// Importance: the segment's mean speed or mean of a point array, on a fixed range (the data's
+// 1st to 99th percentile unless importance_min/max say), to the power importance_exponent; times
+// the opacity of the pass's colour hook where it has one (fade_opacity.frag: a faded end matters
+// less; a fragment faded out is no node). Or, with importance=hook, the colour hook's opacity
+// alone, every fragment kept as an occluder: importance as a GLSL function of LinePoint.
+//
+// Nothing is read back in the frame: the node counter of a frame is copied aside with a fence
+// and read when the fence has passed (the next frame on llvmpipe); a frame that overflowed grows
+// the node buffer for the frames after it and is reported (stats, stderr).
+#include "segmentation.hpp"
+
+#include <pathlet/lines.hpp>
+#include <pathlet/plugin.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace lines = pathlet::lines;
+namespace oo = opacity_lists;
+
+// The lists' layout (shaders/opacity_optimization.glsl): header words, node words.
+constexpr size_t kListHeaderWords = 8, kNodeWords = 4;
+constexpr uint32_t kEnd = 0xFFFFFFFFu;   // OO_END
+constexpr uint32_t kCountWord = 6;       // OO_LIST_COUNT
+constexpr uint32_t kResolveGroup = 8;    // opacity_resolve's work group is 8 x 8
+
+// Every segmentation gets its own generation, so opacity_blend never blends a segment with the
+// state of another segmentation's segment of the same index.
+std::atomic<uint32_t> g_generation{1};
+
+enum class Importance { speed, array, hook };
+
+size_t list_words(glm::ivec2 size, size_t nodes) {
+    const size_t heads = (kListHeaderWords + size_t(size.x) * size_t(size.y) + 3) & ~size_t(3);
+    return heads + kNodeWords * nodes;
+}
+
+class OpacityLists : public pathlet::Pass {
+public:
+    ~OpacityLists() override {
+        if (fbo_) glDeleteFramebuffers(1, &fbo_);
+        if (readback_) glDeleteBuffers(1, &readback_);
+        if (fence_) glDeleteSync(fence_);
+    }
+
+    void setup(pathlet::PassContext& ctx) override {
+        const pathlet::Params& p = ctx.params();
+        const auto importance = p.e<Importance>("importance");
+        std::vector<std::string> defines;  // the pins' bindings come from the engine (LISTS_BINDING, ...)
+        if (importance == Importance::hook) defines.push_back("OO_IMPORTANCE_HOOK");
+        prog_ = &lines::program(ctx, {"opacity_lists.frag"}, lines::hooks(ctx), defines);
+        drawer_.set_depth_func(GL_ALWAYS);  // every fragment, as OIT keeps them
+
+        // The segments and their importance: static for the data set and these parameters.
+        const pathlet::Pathlines& pl = ctx.scene().cpu().lines;
+        const std::vector<float> arc = oo::arc_lengths(pl);
+        const float length = p.f("segment_length") * lines::line_width(ctx);
+        const oo::Segmentation seg = oo::segment_lines(pl, arc, length);
+        std::vector<float> g(seg.segments(), 1.0f);
+        if (importance != Importance::hook) {
+            std::vector<float> field(pl.position.size());
+            float lo = p.f("importance_min"), hi = p.f("importance_max");
+            const bool automatic = !(hi > lo);
+            if (importance == Importance::speed) {
+                for (size_t i = 0; i < field.size(); ++i) field[i] = glm::length(pl.velocity[i]);
+                if (automatic) lo = ctx.scene().speed_min(), hi = ctx.scene().speed_max();
+            } else {
+                const std::string name = p.s("importance_array");
+                const pathlet::PointArray* a = pl.array(name);
+                if (!a) {
+                    std::string names;
+                    for (const auto& x : pl.arrays) names += (names.empty() ? "" : ", ") + x.name;
+                    throw std::runtime_error("importance_array '" + name + "': the data has no point array of that "
+                                             "name; its arrays: " + (names.empty() ? std::string("none") : names));
+                }
+                field = a->values;
+                if (automatic) lo = oo::quantile(field, 0.01), hi = oo::quantile(field, 0.99);
+            }
+            if (!(hi > lo)) hi = lo + 1.0f;  // a constant field: everything as important
+            g = oo::segment_means(pl, arc, seg, field);
+            const float exponent = p.f("importance_exponent");
+            for (float& x : g) x = std::isfinite(x) ? std::pow(std::clamp((x - lo) / (hi - lo), 0.0f, 1.0f), exponent) : 0.0f;
+            range_ = {lo, hi};
+        }
+        const uint32_t generation = g_generation.fetch_add(1);
+        const std::vector<uint32_t> with_importance = oo::pack(seg, generation, &g);
+        segments_bytes_ = 4 * (with_importance.size() - seg.segments());  // the public part
+        const pathlet::Buffer source = ctx.grow_buffer("source", 4 * with_importance.size());
+        glNamedBufferSubData(source.id, 0, GLsizeiptr(4 * with_importance.size()), with_importance.data());
+        ctx.grow_buffer("segments", segments_bytes_);
+        segments_ = seg.segments();
+
+        GLint64 max_block = 0;
+        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+        const size_t cap = size_t(p.f("max_memory_mb") * 1048576.0);
+        max_bytes_ = std::max<size_t>(64, std::min(size_t(std::max<GLint64>(max_block, 0)), cap));
+        if (!readback_) glCreateBuffers(1, &readback_), glNamedBufferStorage(readback_, 4, nullptr, GL_CLIENT_STORAGE_BIT);
+        if (!fbo_) glCreateFramebuffers(1, &fbo_);
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const pathlet::Params& p = ctx.params();
+        const glm::ivec2 out = ctx.output_size();
+        const float res = p.f("resolution");
+        const glm::ivec2 size = glm::max(glm::ivec2(glm::ceil(glm::vec2(out) * res)), glm::ivec2(1));
+        const size_t pixels = size_t(size.x) * size_t(size.y);
+        const size_t max_nodes = max_bytes_ / 4 > list_words(size, 0) ? (max_bytes_ / 4 - list_words(size, 0)) / kNodeWords : 0;
+        if (max_nodes == 0)
+            throw std::runtime_error("max_memory_mb (or GL_MAX_SHADER_STORAGE_BLOCK_SIZE) leaves no room for nodes at " +
+                                     std::to_string(size.x) + "x" + std::to_string(size.y));
+        // Last frame's count, if its fence has passed: grow for this frame when it overflowed.
+        double dropped = -1;
+        if (fence_ && glClientWaitSync(fence_, 0, 0) != GL_TIMEOUT_EXPIRED) {
+            GLuint count = 0;
+            glGetNamedBufferSubData(readback_, 0, 4, &count);
+            glDeleteSync(fence_);
+            fence_ = nullptr;
+            dropped = count > capacity_ ? double(count - capacity_) : 0.0;
+            if (count > capacity_ && capacity_ < max_nodes) {
+                ++events_;
+                wanted_ = std::max(wanted_, size_t(double(count) * 1.25) + 1);
+                std::fprintf(stderr, "%s: node buffer overflow: %u fragments for %zu nodes at %dx%d; grown to %zu nodes\n",
+                             ctx.pass_name().c_str(), count, capacity_, size.x, size.y, std::min(wanted_, max_nodes));
+            } else if (count > capacity_) {
+                std::fprintf(stderr, "%s: a frame dropped %zu of %u fragments: the node buffer is at its cap (max_memory_mb)\n",
+                             ctx.pass_name().c_str(), size_t(count - capacity_), count);
+            }
+        }
+        const size_t by_pixels = size_t(std::ceil(p.f("nodes_per_pixel") * double(pixels)));
+        capacity_ = std::min(max_nodes, std::max({by_pixels, wanted_, size_t(1)}));
+        const pathlet::Buffer lists = ctx.grow_buffer("lists", 4 * list_words(size, capacity_));
+        capacity_ = std::min(max_nodes, (lists.bytes / 4 - list_words(size, 0)) / kNodeWords);
+
+        const GLuint header[kListHeaderWords] = {GLuint((size.x + kResolveGroup - 1) / kResolveGroup),
+                                                 GLuint((size.y + kResolveGroup - 1) / kResolveGroup),
+                                                 1,
+                                                 GLuint(size.x),
+                                                 GLuint(size.y),
+                                                 GLuint(std::min<size_t>(capacity_, 0xFFFFFFFEu)),
+                                                 0,
+                                                 0};
+        glNamedBufferSubData(lists.id, 0, sizeof header, header);
+        glClearNamedBufferSubData(lists.id, GL_R32UI, GLintptr(sizeof header), GLsizeiptr(4 * pixels), GL_RED_INTEGER,
+                                  GL_UNSIGNED_INT, &kEnd);
+        // The public segments, every frame (the resource may be pooled with others between frames).
+        glCopyNamedBufferSubData(ctx.buffer("source").id, ctx.buffer("segments").id, 0, 0, GLsizeiptr(segments_bytes_));
+
+        glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x);
+        glNamedFramebufferParameteri(fbo_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glViewport(0, 0, size.x, size.y);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        prog_->use();  // lists and source on their bindings by declaration
+        drawer_.draw(ctx, *prog_);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(lists.id, readback_, GLintptr(4 * kCountWord), 0, 4);
+        if (fence_) glDeleteSync(fence_);
+        fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+
+        ctx.stat("segments_total", double(segments_));
+        ctx.stat("list_width", size.x);
+        ctx.stat("list_height", size.y);
+        ctx.stat("capacity_nodes", double(capacity_));
+        ctx.stat("node_memory_mib", double(lists.bytes) / 1048576.0);
+        ctx.stat("overflow_events_total", double(events_));
+        if (dropped >= 0) ctx.stat("dropped_fragments_last_frame", dropped);
+        ctx.stat("importance_min", range_.x);
+        ctx.stat("importance_max", range_.y);
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+    lines::Drawer drawer_;
+    GLuint fbo_ = 0, readback_ = 0;
+    GLsync fence_ = nullptr;
+    size_t segments_bytes_ = 0, segments_ = 0, capacity_ = 0, wanted_ = 0, max_bytes_ = 0;
+    long long events_ = 0;
+    glm::vec2 range_{0.0f, 1.0f};
+};
+
+pathlet::PassTypeInfo opacity_lists_type() {
+    pathlet::PassTypeBuilder b("opacity_lists",
+                               "opacity optimization, step 1: the window's pathlets at a reduced resolution into "
+                               "per-pixel lists of (segment, depth, importance); segments are pieces of a line keyed to "
+                               "its arc length, importance the segment's speed, a point array, or a colour hook");
+    lines::declare_params(b)
+        .param_float("resolution", 0.5, 0.05, 1.0,
+                     "size of the lists relative to the output (0.5: a quarter of the pixels; the reference "
+                     "implementations' default)")
+        .param_float("segment_length", 4.0, 0.25, 1000.0,
+                     "length of an opacity segment in line widths (the kit's width: scale-free); every line gets "
+                     "its length / this, rounded, at least one")
+        .param_enum("importance", "speed", {"speed", "array", "hook"},
+                    "what makes a segment important: speed (its mean speed) or array (its mean of the point array "
+                    "importance_array), times the colour hook's opacity where there is one (fade_opacity.frag: the "
+                    "end fade); or hook: the colour hook's opacity alone (its alpha is the importance)")
+        .param_string("importance_array", "", "the point array of the data for importance=array (pathlet info lists them)")
+        .param_float("importance_min", 0.0, -1e30, 1e30,
+                     "value of importance 0 (speed or array); importance_max <= importance_min: the data's 1st "
+                     "percentile (speed: the colour map's automatic range)")
+        .param_float("importance_max", 0.0, -1e30, 1e30, "value of importance 1; see importance_min")
+        .param_float("importance_exponent", 1.0, 0.1, 10.0,
+                     "importance = (value on the range)^this: above 1 fewer segments are important, so the many slow ones "
+                     "clear each other less (dense flow tends to be faded alike, Tuncay & Guenther 2024)")
+        .param_float("nodes_per_pixel", 8.0, 0.01, 1024.0,
+                     "initial node capacity per list pixel (16 bytes a node); grown after a frame that overflowed")
+        .param_float("max_memory_mb", 512.0, 0.01, 65536.0,
+                     "cap for the lists in MiB (also GL_MAX_SHADER_STORAGE_BLOCK_SIZE); beyond it fragments are "
+                     "dropped and counted")
+        .output_buffer("lists",
+                       "per-pixel lists at the reduced resolution: header, heads, nodes (segment, depth, importance, "
+                       "next); layout shaders/opacity_optimization.glsl",
+                       {.bytes = 4 * kListHeaderWords})
+        .output_buffer("segments",
+                       "the segmentation: header, per line its first segment, count and segment length, per segment "
+                       "its line (shaders/opacity_optimization.glsl)",
+                       {.bytes = 16})
+        .internal_buffer("source", "the segmentation with each segment's importance, made at setup",
+                         {.bytes = 16}, {.persistent = true});
+    return b.make<OpacityLists>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("opacity_lists", { sink->add(opacity_lists_type()); })

@@ -1,0 +1,113 @@
+// opacity_lists on real GL: the importance its lists carry, from a point array of the data and
+// from a GLSL hook; a point array survives the importers' repair with its points; a missing
+// array is an error that names the arrays there are.
+#include "frame_runner.hpp"
+#include "opacity_layout.hpp"
+#include "straight_lines.hpp"
+
+#include "io/pathline_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+
+using namespace pathlet;
+using namespace pathlet::oo_test;
+
+namespace {
+
+const std::string kGraph = std::string(PATHLET_SOURCE_DIR) + "/graphs/variant4_opacity.json";
+const glm::ivec2 kSize{160, 120};
+
+// Three parallel lines at the same speed, a "pressure" of 10, 30 and 20.
+const Scene& three_lines() {
+    static const Scene s = straight_lines_scene({{{0, 0, 0}, {10, 0, 0}, 5.0f, 41, {10.0f}},
+                                                 {{0, 3, 0}, {10, 3, 0}, 5.0f, 41, {30.0f}},
+                                                 {{0, 6, 0}, {10, 6, 0}, 5.0f, 41, {20.0f}}},
+                                                {"pressure"});
+    return s;
+}
+
+// Per line, the importance of every node of the lists.
+std::map<uint32_t, std::vector<float>> node_importance(const std::vector<std::string>& sets) {
+    FrameRunner run(kGraph, sets, three_lines(), kSize, camera_down_z(three_lines(), {5, 3, 0}, 30, 30, kSize),
+                    {"oo_lists", "oo_segments"});
+    run.frame(0.0);
+    const std::vector<uint32_t> l = run.words("oo_lists");
+    const Segments seg(run.words("oo_segments"));
+    const uint32_t nodes_at = (8 + l.at(3) * l.at(4) + 3) & ~3u;
+    std::map<uint32_t, std::vector<float>> out;
+    for (uint32_t i = 0; i < std::min(l.at(6), l.at(5)); ++i)
+        out[seg.line_of(l.at(nodes_at + 4 * i))].push_back(as_float(l.at(nodes_at + 4 * i + 2)));
+    return out;
+}
+
+const std::vector<std::string> kBase = {"window=-1", "line_width=0.8", "segment_length=2", "importance_exponent=1"};
+
+std::vector<std::string> with(std::vector<std::string> extra) {
+    std::vector<std::string> s = kBase;
+    s.insert(s.end(), extra.begin(), extra.end());
+    return s;
+}
+
+}  // namespace
+
+TEST(OpacityLists, ImportanceFromAPointArrayOnItsRange) {
+    const auto g = node_importance(with({"importance=array", "importance_array=pressure",
+                                         "opacity_lists.importance_min=10", "opacity_lists.importance_max=30"}));
+    const float expect[3] = {0.0f, 1.0f, 0.5f};
+    for (uint32_t line = 0; line < 3; ++line) {
+        ASSERT_GT(g.count(line) ? g.at(line).size() : 0u, 20u) << "line " << line;
+        for (float x : g.at(line)) ASSERT_NEAR(x, expect[line], 1e-6) << "line " << line;
+    }
+    // Speed, the default, is the same for all three lines.
+    const auto speed = node_importance(with({"opacity_lists.importance_min=0", "opacity_lists.importance_max=10"}));
+    for (uint32_t line = 0; line < 3; ++line)
+        for (float x : speed.at(line)) ASSERT_NEAR(x, 0.5f, 1e-6);
+}
+
+TEST(OpacityLists, ImportanceFromAHookOfLinePoint) {
+    // importance_near.glsl: 1 at the point, falling to 0 at focus_radius; the middle line passes
+    // through the point, the others lie 3 away, beyond the radius.
+    const auto g = node_importance(with({"importance=hook", "opacity_lists.color_hook=importance_near.glsl",
+                                         "opacity_lists.focus_center=[5,3,0]", "opacity_lists.focus_radius=2.5"}));
+    ASSERT_EQ(g.size(), 3u) << "every fragment is a node, important or not";
+    for (uint32_t line : {0u, 2u})
+        for (float x : g.at(line)) ASSERT_EQ(x, 0.0f) << "line " << line;
+    const std::vector<float>& mid = g.at(1);
+    EXPECT_GT(*std::max_element(mid.begin(), mid.end()), 0.9f);
+    EXPECT_EQ(*std::min_element(mid.begin(), mid.end()), 0.0f) << "the line runs on beyond the radius";
+}
+
+TEST(OpacityLists, AMissingArrayNamesTheArraysThereAre) {
+    try {
+        node_importance(with({"importance=array", "importance_array=vorticity"}));
+        FAIL() << "no error";
+    } catch (const std::exception& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("vorticity"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("pressure"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("opacity_lists"), std::string::npos) << msg;
+    }
+}
+
+TEST(OpacityLists, APointArrayTravelsWithItsPointsThroughRepair) {
+    // Line 0 repeats its second point (dropped by the repair) and runs backwards in time (reversed).
+    const std::string path = test_scratch_dir("pathlet_oo_lists") + "/arrays.vtk";
+    std::ofstream(path) << "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\nPOINTS 6 float\n"
+                           "0 0 0 1 0 0 1 0 0 2 0 0 0 1 0 1 1 0\nLINES 2 8\n4 0 1 2 3\n2 4 5\n"
+                           "POINT_DATA 6\nSCALARS time float\nLOOKUP_TABLE default\n3 2 2 1 0 1\n"
+                           "SCALARS pressure float\nLOOKUP_TABLE default\n10 11 11 12 20 21\n"
+                           "VECTORS vorticity float\n3 4 0 0 0 1 0 0 1 0 0 2 1 0 0 0 1 0\n";
+    io::LoadReport report;
+    const Pathlines pl = io::load_pathlines(path, {}, &report);
+    ASSERT_EQ(pl.point_count(), 5u);
+    const PointArray* p = pl.array("pressure");
+    const PointArray* v = pl.array("vorticity");
+    ASSERT_TRUE(p && v);
+    EXPECT_EQ(pl.array("time"), nullptr) << "time is the pathlines' own";
+    EXPECT_EQ(p->values, (std::vector<float>{12, 11, 10, 20, 21}));  // reversed, the duplicate gone
+    EXPECT_EQ(v->values, (std::vector<float>{2, 1, 5, 1, 1}));      // vectors as their magnitude
+    pl.check_consistent("test");
+}
