@@ -5,19 +5,28 @@
 // same raster also writes variant 2's opaque G-buffer for LineAO (what a separate gbuffer pass
 // would draw: one raster of the window instead of two, the same lists).
 //
-// Overflow is never silent: after the draw the node counter is read back and compared with the
-// capacity. On overflow the buffer grows (x1.25 the count, within max_memory_mb and the GL
-// buffer-texture limit) and the frame's lists are rebuilt; the event goes to the log and to the
-// timing report (stats). If even the cap is too small, the frame says how many fragments it lost.
+// Overflow is never silent. The first frame after setup reads the node counter back after the
+// draw (a wait, once): on overflow the buffer grows (x1.25 the count, within max_memory_mb and
+// the GL buffer-texture limit) and the frame's lists are rebuilt, so a single picture is whole.
+// Later frames never wait (issue 34: a GPU idles while the CPU waits, and its clock drops): the
+// counter is copied through a fenced ring (pathlet::GpuReadback) and read a frame or two late;
+// the buffer grows ahead when a frame used more than kGrowAt of it, to kHeadroom x that count.
+// A frame that still overflowed lost fragments: that is logged and counted (stats) when its
+// count arrives, and the buffer grows for the next. If even the cap is too small, the frame says
+// how many fragments it lost.
 #include <pathlet/lines.hpp>
+#include <pathlet/gpu_readback.hpp>
 #include <pathlet/oit.hpp>
 #include <pathlet/plugin.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -28,6 +37,8 @@ namespace oit = pathlet::oit;
 class FillList : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
+        counts_.reset();  // the first frame after setup reads its count back at once
+        capacities_.clear();
         records_ = ctx.connected("records");
         coverage_ = ctx.connected("coverage");
         gbuffer_ = lines::gbuffer_targets(ctx);
@@ -69,7 +80,53 @@ public:
         const size_t pixels = size_t(size.x) * size_t(size.y);
         const size_t wanted = std::min(max_nodes_, size_t(std::ceil(ctx.params().f("nodes_per_pixel") * double(pixels))));
         size_t capacity = ensure_capacity(ctx, std::max<size_t>(wanted, 1));
-        GLuint count = draw(ctx, capacity);
+        if (!counts_) {
+            first_frame(ctx, capacity);
+            counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));
+            return;
+        }
+        // A count of an earlier frame, with the capacity that frame had.
+        int events = 0;
+        size_t dropped = 0;
+        if (const void* p = counts_->poll()) {
+            const GLuint count = *static_cast<const GLuint*>(p);
+            const uint64_t seq = counts_->latest_sequence();
+            while (!capacities_.empty() && capacities_.front().first < seq) capacities_.pop_front();
+            const size_t had = capacities_.empty() ? capacity : capacities_.front().second;
+            last_count_ = count;
+            if (count > had) {
+                dropped = count - had;
+                ++events;
+                ++events_total_;
+            }
+            if (double(count) > kGrowAt * double(capacity) && capacity < max_nodes_)
+                capacity = ensure_capacity(ctx, std::min(max_nodes_, size_t(kHeadroom * double(count)) + 1));
+            if (dropped && had >= max_nodes_) {
+                report_cap(ctx, dropped, count, had);
+            } else if (dropped) {
+                std::fprintf(stderr,
+                             "%s: node buffer overflow %llu frame(s) ago: %u fragments for %zu nodes, %zu lost; now "
+                             "%zu nodes (%.1f MiB)\n",
+                             ctx.pass_name().c_str(), (unsigned long long)(counts_frames_ - seq), count, had, dropped,
+                             capacity, double(capacity * oit::kNodeBytes) / 1048576.0);
+            }
+        }
+        draw(ctx, capacity);
+        if (counts_->copy(ctx.buffer("counter").id, 0)) capacities_.emplace_back(counts_frames_++, capacity);
+        report(ctx, last_count_, capacity, events, dropped);
+    }
+
+private:
+    // Grows the node buffer to hold `nodes` (never shrinks) and points the buffer texture at it.
+    size_t ensure_capacity(pathlet::PassContext& ctx, size_t nodes) {
+        pathlet::Buffer b = ctx.grow_buffer("nodes", nodes * oit::kNodeBytes);
+        if (records_) ctx.grow_buffer("records", b.bytes);  // the same indices
+        return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
+    }
+
+    // The first frame: waits for its count, and on overflow grows and draws the frame again.
+    void first_frame(pathlet::PassContext& ctx, size_t capacity) {
+        GLuint count = draw_and_count(ctx, capacity);
         int events = 0;
         if (count > capacity && capacity < max_nodes_) {
             ++events;
@@ -82,15 +139,30 @@ public:
                          double(grown * oit::kNodeBytes) / 1048576.0);
             capacity = grown;
             oit::clear_lists(ctx.texture("heads").id, ctx.buffer("counter").id);
-            count = draw(ctx, capacity);
+            count = draw_and_count(ctx, capacity);
         }
         const size_t dropped = count > capacity ? count - capacity : 0;
-        if (dropped)
-            std::fprintf(stderr,
-                         "%s: frame %llu DROPS %zu of %u fragments: the node buffer is at its cap (%zu nodes, "
-                         "max_memory_mb = %.0f); raise max_memory_mb or shorten the window\n",
-                         ctx.pass_name().c_str(), (unsigned long long)ctx.frame_index(), dropped, count, capacity,
-                         ctx.params().f("max_memory_mb"));
+        if (dropped) report_cap(ctx, dropped, count, capacity);
+        last_count_ = count;
+        report(ctx, count, capacity, events, dropped);
+    }
+
+    GLuint draw_and_count(pathlet::PassContext& ctx, size_t capacity) {
+        draw(ctx, capacity);
+        GLuint count = 0;
+        glGetNamedBufferSubData(ctx.buffer("counter").id, 0, sizeof(count), &count);  // waits for the draw
+        return count;
+    }
+
+    void report_cap(pathlet::PassContext& ctx, size_t dropped, GLuint count, size_t capacity) const {
+        std::fprintf(stderr,
+                     "%s: frame %llu DROPS %zu of %u fragments: the node buffer is at its cap (%zu nodes, "
+                     "max_memory_mb = %.0f); raise max_memory_mb or shorten the window\n",
+                     ctx.pass_name().c_str(), (unsigned long long)ctx.frame_index(), dropped, count, capacity,
+                     ctx.params().f("max_memory_mb"));
+    }
+
+    void report(pathlet::PassContext& ctx, GLuint count, size_t capacity, int events, size_t dropped) const {
         ctx.stat("nodes", double(count));
         ctx.stat("capacity_nodes", double(capacity));
         ctx.stat("node_memory_mib", double(capacity * oit::kNodeBytes) / 1048576.0);
@@ -99,16 +171,9 @@ public:
         ctx.stat("dropped_fragments", double(dropped));
     }
 
-private:
-    // Grows the node buffer to hold `nodes` (never shrinks) and points the buffer texture at it.
-    size_t ensure_capacity(pathlet::PassContext& ctx, size_t nodes) {
-        pathlet::Buffer b = ctx.grow_buffer("nodes", nodes * oit::kNodeBytes);
-        if (records_) ctx.grow_buffer("records", b.bytes);  // the same indices
-        return std::min(max_nodes_, b.bytes / oit::kNodeBytes);
-    }
-
-    // Appends the window's fragments to the lists; returns the counter (may exceed capacity).
-    GLuint draw(pathlet::PassContext& ctx, size_t capacity) {
+    // Appends the window's fragments to the lists (the counter may pass the capacity: those
+    // fragments are not stored).
+    void draw(pathlet::PassContext& ctx, size_t capacity) {
         if (writes_gbuffer_) {
             lines::bind_gbuffer(ctx, gbuffer_, *prog_);  // cleared again when an overflow re-renders
         } else {
@@ -124,17 +189,15 @@ private:
         prog_->bind_image("u_nodes", ctx.buffer_texture("nodes", oit::kNodeFormat), oit::kNodeFormat, GL_WRITE_ONLY);
         if (records_)
             prog_->bind_image("u_records", ctx.buffer_texture("records", oit::kNodeFormat), oit::kNodeFormat, GL_WRITE_ONLY);
-        const GLuint counter = ctx.buffer("counter").id;
         prog_->use();
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
         drawer_.draw(ctx, *prog_);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                         GL_SHADER_STORAGE_BARRIER_BIT);
-        GLuint count = 0;
-        glGetNamedBufferSubData(counter, 0, sizeof(count), &count);  // waits for the draw
-        return count;
     }
+
+    static constexpr double kGrowAt = 0.75, kHeadroom = 1.5;
 
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
@@ -142,6 +205,10 @@ private:
     lines::GBufferTargets gbuffer_;  // the bound G-buffer colour targets (only with 'depth')
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
+    std::unique_ptr<pathlet::GpuReadback> counts_;          // later frames' counts, without waiting
+    std::deque<std::pair<uint64_t, size_t>> capacities_;    // per copy in flight: its capacity
+    uint64_t counts_frames_ = 0;                            // copies made
+    GLuint last_count_ = 0;                                 // the newest count known
 };
 
 pathlet::PassTypeInfo fill_list_type() {

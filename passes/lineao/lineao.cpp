@@ -166,7 +166,7 @@ pathlet::PassTypeInfo lineao_type() {
         .param_int("seed", 1, 0, 2147483647, "seed of the fixed per-pixel noise (same image every run)")
         .param_enum("resolution", "full", {"full", "half"},
                     "half: the term for one pixel in each 2x2 block, then a depth-aware upsampling (about a "
-                    "quarter of the cost; measured difference in the README); full: every pixel")
+                    "quarter of the cost; measured difference in docs/quality.md); full: every pixel")
         .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
         .input_texture("pyramid", "rgba16f", "gauss_pyramid output; mip l is read by level l", {.optional = true})
         .input_texture("zoom", "r32f", "pixels per world unit at the fragment")

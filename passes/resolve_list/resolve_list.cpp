@@ -1,11 +1,14 @@
 // resolve_list: variant 2's resolve. Sorts each pixel's linked list by depth and composites it
 // front to back into the colour map that bilateral multiplies LineAO into (the seed's
 // variant 2), or, given an opaque core's AO, applies AO per fragment itself (variant2_oit_ao).
+#include <pathlet/gpu_readback.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/oit.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
+#include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -80,11 +83,14 @@ public:
         } else {
             ctx.draw_fullscreen();
         }
+        // The statistics through a fenced copy, read when the GPU is done (a frame or two late
+        // on a GPU): the frame loop never waits for them.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        GLuint s[2] = {0, 0};
-        glGetNamedBufferSubData(stats, 0, sizeof(s), s);
-        ctx.stat("peak_nodes_per_pixel", double(s[0]));
-        ctx.stat("truncated_pixels", double(s[1]));
+        if (!stats_) stats_ = std::make_unique<pathlet::GpuReadback>(sizeof stats_seen_);
+        if (const void* p = stats_->poll()) std::memcpy(stats_seen_, p, sizeof stats_seen_);
+        stats_->copy(stats, 0);
+        ctx.stat("peak_nodes_per_pixel", double(stats_seen_[0]));
+        ctx.stat("truncated_pixels", double(stats_seen_[1]));
     }
 
 private:
@@ -92,6 +98,8 @@ private:
     std::vector<std::string> targets_;
     pathlet::lines::VolumeAo vao_;
     bool vao_on_ = false;
+    std::unique_ptr<pathlet::GpuReadback> stats_;
+    GLuint stats_seen_[2] = {0, 0};  // the newest statistics known
 };
 
 pathlet::PassTypeInfo resolve_list_type() {

@@ -27,7 +27,8 @@ SETUP_HEADING = "Set up"
 SETUP_COMMANDS = ["scripts/main.sh", "scripts/test.sh"]
 # Commands whose first positional argument is a graph (bench: a comma-separated list).
 GRAPH_COMMANDS = {"render", "view", "quality", "graph", "bench"}
-# A --set value that names a hook or shader file is a path of the user's, not checked here.
+# A --set value that names a hook or shader file: checked with the graph where the file is shipped
+# (the hook's own parameters then exist); a file of the user's (my_fade.glsl) is not checked.
 FILE_VALUE = re.compile(r"\.(glsl|frag|vert|geom|comp)$")
 
 problems = []
@@ -266,20 +267,29 @@ def check_command(cli, rel, n, tokens):
                     if target not in (str(index), g):
                         continue
                     s = rest
-                if not FILE_VALUE.search(s):
-                    mine.append(s)
+                mine.append(s)
             if mine:
-                code, out = cli.validate(path, mine)
+                code, out = validate_with_hooks(cli, path, mine)
                 if code != 0:
                     problem(rel, n, f"'pathlet {command} {g} --set {' --set '.join(mine)}': {out}")
     elif command in GRAPH_COMMANDS and sets and command != "bench" and not positionals:
         default = cli.graph_file("variant1_lineao")
-        mine = [s for s in sets if not FILE_VALUE.search(s)]
+        mine = list(sets)
         if mine:
-            code, out = cli.validate(default, mine)
+            code, out = validate_with_hooks(cli, default, mine)
             if code != 0:
                 problem(rel, n, f"'pathlet {command} --set {' --set '.join(mine)}' (variant1_lineao): {out}")
     return True
+
+
+def validate_with_hooks(cli, graph, sets):
+    """Validates `sets` on `graph`, hook files included where they are shipped (the engine finds
+    them on the shader path); where a named hook file is not found (one the reader writes, as
+    my_fade.glsl), validates without the file values."""
+    code, out = cli.validate(graph, sets)
+    if code != 0 and "hook file" in out and "not found" in out:
+        code, out = cli.validate(graph, [s for s in sets if not FILE_VALUE.search(s)])
+    return code, out
 
 
 def check_commands(cli, rel):

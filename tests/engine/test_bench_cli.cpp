@@ -318,7 +318,9 @@ TEST(BenchCli, AWrongSetOfTheLastGraphStopsBeforeAnyRun) {
     EXPECT_NE(r.err.find("window"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("1/2 runs"), std::string::npos) << "no run may start before the sets are checked:\n" << r.err;
     const fs::path results = d / "o" / "results.json";
-    if (fs::exists(results)) EXPECT_TRUE(json::parse(slurp(results))["runs"].empty()) << "no run finished";
+    if (fs::exists(results)) {
+        EXPECT_TRUE(json::parse(slurp(results))["runs"].empty()) << "no run finished";
+    }
 }
 
 TEST(BenchCli, CtrlCLeavesCompleteFilesForFinishedRuns) {
@@ -326,9 +328,16 @@ TEST(BenchCli, CtrlCLeavesCompleteFilesForFinishedRuns) {
     fs::path f = write(d / "e.json", R"({ "graphs": ["variant1_lineao"], "data": [{"phantom": "small"}],
       "sizes": ["320x180"], "time": 0.5, "frames": 40, "warmup": 1,
       "sweep": {"param": "samples", "values": [8, 16, 24, 32, 40, 48, 56, 64]} })");
-    // SIGINT after 1.5 s: the run in progress finishes, the files hold the finished runs.
+    // SIGINT once the first run is in summary.csv (a fixed delay raced the start-up on a loaded
+    // machine): the run in progress finishes, the files hold the finished runs. The watcher
+    // signals $$, which `exec` makes the bench itself, in the foreground (a background job of a
+    // script would ignore SIGINT).
+    const fs::path wrapper = write(d / "interrupt.sh", R"(f=$1; shift
+( i=0; until grep -q '(frame)' "$f" 2>/dev/null || [ $i -ge 1200 ]; do sleep 0.1; i=$((i+1)); done; kill -INT $$ ) &
+exec "$@"
+)");
     CliRun r = pathlet_cli("bench --experiment " + f.string() + " --out " + (d / "o").string() + " --no-images --quiet",
-                           "timeout --preserve-status -s INT 1.5");
+                           "sh " + wrapper.string() + " " + (d / "o" / "summary.csv").string());
     ASSERT_EQ(r.code, 130) << r.err;
     EXPECT_NE(r.err.find("interrupted after"), std::string::npos) << r.err;
     json j = json::parse(slurp(d / "o" / "results.json"));

@@ -20,6 +20,7 @@ for f in info-gl.txt info-gl-minimum.txt compare.txt summary.txt bench_window.js
   [ -s "$R/$f" ] || fail "$f missing or empty"
 done
 grep -q '^GL_MAX_IMAGE_UNITS 8$' "$R/info-gl-minimum.txt" || fail "info-gl-minimum.txt does not say 8 image units"
+grep -Eq '^PATHLET_BUILD build: (full|lean)' "$R/info-gl.txt" || fail "info-gl.txt does not say which build made it"
 graphs=$(ls "$SRC"/graphs/*.json | wc -l)
 [ "$(ls "$R"/renders/*.png | wc -l)" -eq "$graphs" ] || fail "not one render per shipped graph ($graphs)"
 [ "$(grep -c ' ok$' "$R/compare.txt")" -eq "$graphs" ] || fail "renders differ from the reference: $(cat "$R/compare.txt")"

@@ -4,12 +4,15 @@
 #include "io/file_info.hpp"
 #include "scene_args.hpp"
 
+#include "build_info.hpp"
 #include "gl_context.hpp"
 #include "runtime.hpp"
 
 #include <pathlet/gl_limits.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace pathlet::cli {
 namespace {
@@ -23,6 +26,11 @@ int print_gl_limits() {
         std::printf("GL_RENDERER %s\nGL_VERSION %s\nPATHLET_GL_LIMITS %s\n", gl.renderer().c_str(), gl.version().c_str(),
                     limits.minimum_mode() ? "minimum" : "context");
         for (const GlLimit& l : gl_limit_table()) std::printf("%s %d\n", l.name, limits.get(l.pname));
+        // What this build is and where it runs from (pathlet --version), one line, so a report
+        // from a GPU node says which bundle made it.
+        std::string build = build_description();
+        std::replace(build.begin(), build.end(), '\n', ';');
+        std::printf("PATHLET_VERSION %s\nPATHLET_BUILD %s\n", PATHLET_VERSION, build.c_str());
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pathlet info: error: %s\n", e.what());

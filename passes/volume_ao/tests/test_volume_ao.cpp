@@ -222,6 +222,25 @@ TEST(VolumeAo, Deterministic) {
     EXPECT_EQ(max_abs_difference(a["ao"], b["ao"]), 0.0f);
 }
 
+// The density's 3D texture made by a dispatch (a GPU's default: no pixel-buffer upload the
+// driver might convert on the CPU) is the upload's (llvmpipe's default), to float rounding.
+TEST(VolumeAo, TheDensityCopiedByADispatchIsTheUploadsTexture) {
+    const Scene scene = bundle_scene();
+    auto copy = [](const std::string& how) {
+        std::vector<std::string> sets;
+        for (const char* pass : {"volume_ao", "resolve_list", "fragment_probe"})
+            sets.push_back(std::string(pass) + ".density_copy=" + how);
+        return sets;
+    };
+    const std::vector<std::string> names = {"ao", "front_ao", "fragment_ao"};
+    const Frame up = render(scene, copy("upload"), 10.0, names), gpu = render(scene, copy("compute"), 10.0, names);
+    size_t occluded = 0;
+    for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) occluded += up["ao"].at(x, y, 0) < 0.9f;
+    EXPECT_GT(occluded, 100u) << "the bundle must be occluded, or equal images say nothing";
+    for (const auto& n : names) EXPECT_LT(max_abs_difference(up[n], gpu[n]), 1e-4f) << n;
+}
+
 // Every OIT fragment's own AO (fill_list's records, resolve_list) is the per-pixel estimate
 // of the same surface: fp16 G-buffer against 32-bit node depth, packed normals.
 TEST(VolumeAo, PerFragmentUnderOitMatchesPerPixel) {

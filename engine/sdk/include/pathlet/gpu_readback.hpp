@@ -8,6 +8,7 @@
 #include <pathlet/gl.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace pathlet {
@@ -26,12 +27,17 @@ public:
     bool copy(GLuint buffer, size_t offset);
     // The newest copy the GPU has finished since the last call, or nullptr; never waits.
     const void* poll();
+    // Which copy poll() last returned: 0 for the first successful copy(), 1 for the next, ...
+    // (to pair a count with what the CPU knew when it was copied).
+    uint64_t latest_sequence() const { return latest_sequence_; }
 
 private:
     size_t bytes_, stride_;
     GLuint buffer_ = 0;
     const unsigned char* mapped_ = nullptr;
     std::vector<GLsync> fence_;
+    std::vector<uint64_t> sequence_;  // per slot, the copy it holds
+    uint64_t copies_ = 0, latest_sequence_ = 0;
     std::vector<unsigned char> latest_;
     int next_ = 0;  // the slot the next copy goes to; the oldest in flight is at next_ too when all are
 };
