@@ -93,6 +93,8 @@ void write_image(const std::string& path, const Image& img) {
     const bool as_float = keeps_float(ext, img);
     OIIO::ImageSpec spec(img.width, img.height, channels, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:UnassociatedAlpha", 1);  // store the buffer's values, no (un)premultiplying
+    spec.attribute("png:compressionLevel", kPngCompressionLevel);
+    spec.attribute("png:filter", 0x08 << kPngFilterUp);  // libpng's PNG_FILTER_UP: that filter alone
 
     std::vector<float> values = select_channels(img, channels);
     std::vector<uint8_t> bytes;

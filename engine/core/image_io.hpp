@@ -12,6 +12,13 @@
 
 namespace pathlet {
 
+// How every PNG Pathlet writes is compressed: frames are encoded while the next ones render, on
+// the same cores. zlib level 1 and the UP filter on every row (libpng's adaptive choice of a
+// filter per row was half the encoding time) make files ~20 % larger than the libraries'
+// defaults at under half the CPU (llvmpipe, 2 cores, 720p: docs/performance.md).
+constexpr int kPngCompressionLevel = 1;
+constexpr int kPngFilterUp = 2;  // the PNG filter type "Up" (libpng's mask for it: 0x10 << 2)
+
 struct Image {
     int width = 0, height = 0, channels = 4;
     bool is_float = false;      // source precision: float/half data, not 8-bit

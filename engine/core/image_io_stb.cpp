@@ -53,6 +53,9 @@ void write_png(const std::string& path, const Image& img) {
     std::vector<uint8_t> bytes(img.pixels.size());
     std::transform(img.pixels.begin(), img.pixels.end(), bytes.begin(), to_unorm8);
     std::string png;
+    static const bool level_set = (stbi_write_png_compression_level = kPngCompressionLevel,  // once: globals
+                                   stbi_write_force_png_filter = kPngFilterUp, true);
+    (void)level_set;
     if (!stbi_write_png_to_func(append, &png, img.width, img.height, img.channels, bytes.data(), img.width * img.channels))
         throw std::runtime_error(path + ": cannot write image: PNG encoding failed");
     write_file_atomic(path, png);  // a temporary name, then renamed

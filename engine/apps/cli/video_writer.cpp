@@ -113,7 +113,9 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
         ffmpeg, "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-f", "rawvideo", "-pixel_format", "rgba",
         "-video_size", std::to_string(width) + "x" + std::to_string(height), "-framerate", rate.str(), "-i", "pipe:0",
         "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",  // yuv420p needs even sizes
-        "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18", "-movflags", "+faststart", tmp_};
+        "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18",
+        "-preset", "veryfast",  // frames encode while the next render on the same cores; as small at crf 18
+        "-movflags", "+faststart", tmp_};
     std::vector<char*> argv;
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
