@@ -1,4 +1,5 @@
 #include "image_io.hpp"
+#include "pixel_store.hpp"
 
 #include "util/atomic_file.hpp"
 
@@ -171,31 +172,15 @@ static Image read_texture_as(GLuint tex, int w, int h, int mip, int channels, GL
                                  " is " + std::to_string(tw) + "x" + std::to_string(th) + ", not " +
                                  std::to_string(w) + "x" + std::to_string(h));
 
-    // Pack state set by others (a bound pack buffer, row length) would redirect or skew the
-    // copy; use plain settings and put theirs back.
-    GLint pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
-    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
-    glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
-    glGetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows);
-    glGetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-    glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
-
     const size_t row = size_t(w) * size_t(channels);
     std::vector<float> bottom_up(row * size_t(h));
-    while (glGetError() != GL_NO_ERROR) {}  // earlier errors are not ours (KHR_debug reports them)
-    glGetTextureImage(tex, mip, format, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)), bottom_up.data());
-    const GLenum err = glGetError();
-
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_buffer));
-    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
-    glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
-    glPixelStorei(GL_PACK_SKIP_ROWS, skip_rows);
-    glPixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels);
+    GLenum err = GL_NO_ERROR;
+    {
+        const PlainPixelStore plain(PlainPixelStore::pack);
+        while (glGetError() != GL_NO_ERROR) {}  // earlier errors are not ours (KHR_debug reports them)
+        glGetTextureImage(tex, mip, format, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)), bottom_up.data());
+        err = glGetError();
+    }
     if (err != GL_NO_ERROR) {
         char code[16];
         std::snprintf(code, sizeof code, "0x%04x", unsigned(err));

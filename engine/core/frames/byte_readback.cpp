@@ -1,6 +1,7 @@
 #include "frames/byte_readback.hpp"
 
 #include "image_io.hpp"
+#include "pixel_store.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -14,18 +15,9 @@ bool is_unorm8(GLenum f) { return f == GL_R8 || f == GL_RG8 || f == GL_RGBA8 || 
 
 // glGetTextureImage as bytes with plain pack state (read_texture does the same for floats).
 std::vector<uint8_t> read_bytes(GLuint tex, int w) {
-    GLint buffer = 0, alignment = 4, row_length = 0;
-    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &buffer);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
-    glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    const PlainPixelStore plain(PlainPixelStore::pack);
     std::vector<uint8_t> out(size_t(w) * 4);
     glGetTextureImage(tex, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(out.size()), out.data());
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(buffer));
-    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
-    glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
     return out;
 }
 
@@ -40,17 +32,8 @@ std::shared_ptr<const ByteTable> measure_byte_table(GLenum internal_format) {
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
     glTextureStorage2D(tex, 1, internal_format, 256, 1);
     {
-        GLint buffer = 0, alignment = 4, row_length = 0;
-        glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer);
-        glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
-        glGetIntegerv(GL_UNPACK_ROW_LENGTH, &row_length);
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        const PlainPixelStore plain(PlainPixelStore::unpack);
         glTextureSubImage2D(tex, 0, 0, 0, 256, 1, GL_RGBA, GL_UNSIGNED_BYTE, ramp.data());
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(buffer));
-        glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, row_length);
     }
     std::shared_ptr<ByteTable> table;
     try {

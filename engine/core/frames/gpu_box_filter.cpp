@@ -2,6 +2,7 @@
 
 #include "frames/raw_frame.hpp"
 #include "image_io.hpp"
+#include "pixel_store.hpp"
 
 #include <cstring>
 #include <random>
@@ -56,27 +57,6 @@ GLuint compile(GLenum stage, const char* src) {
     }
     return s;
 }
-
-// Unpack state a pass may have left (a bound buffer, row length) would skew the test upload.
-class PlainUnpack {
-public:
-    PlainUnpack() {
-        glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
-        glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment_);
-        glGetIntegerv(GL_UNPACK_ROW_LENGTH, &row_length_);
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    }
-    ~PlainUnpack() {
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(buffer_));
-        glPixelStorei(GL_UNPACK_ALIGNMENT, alignment_);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, row_length_);
-    }
-
-private:
-    GLint buffer_ = 0, alignment_ = 4, row_length_ = 0;
-};
 
 }  // namespace
 
@@ -179,7 +159,7 @@ bool GpuBoxFilter::measure(GLenum internal_format, int factor) {
     bool same = false;
     try {
         {
-            PlainUnpack unpack;
+            const PlainPixelStore unpack(PlainPixelStore::unpack);  // what a pass left would skew the upload
             glTextureSubImage2D(tex, 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, pattern.data());
         }
         const Image cpu = box_downsample(read_texture(tex, W, H, 0, 4), factor);
