@@ -43,7 +43,6 @@ bool keeps_float(const std::string& ext, const Image& img) {
 
 // Drops alpha (for JPEG and friends); returns values in the layout that is written.
 std::vector<float> select_channels(const Image& img, int channels) {
-    if (channels == img.channels) return img.pixels;
     std::vector<float> out;
     out.reserve(size_t(img.width) * size_t(img.height) * size_t(channels));
     for (size_t i = 0; i < img.pixels.size(); i += size_t(img.channels))
@@ -63,12 +62,6 @@ GLenum gl_format_for(int channels) {
 }
 
 }  // namespace
-
-uint8_t to_unorm8(float v) {
-    if (!(v > 0.0f)) return 0;  // also NaN
-    if (v >= 1.0f) return 255;
-    return uint8_t(std::lround(v * 255.0f));
-}
 
 std::vector<uint8_t> to_rgba8(const Image& img) {
     const size_t n = size_t(img.width) * size_t(img.height);
@@ -97,7 +90,10 @@ void write_image(const std::string& path, const Image& img) {
     spec.attribute("png:compressionLevel", kPngCompressionLevel);
     spec.attribute("png:filter", 0x08 << kPngFilterUp);  // libpng's PNG_FILTER_UP: that filter alone
 
-    std::vector<float> values = select_channels(img, channels);
+    // The image's own floats where every channel is written (no copy of a frame on the writers' path).
+    std::vector<float> selected;
+    if (channels != img.channels) selected = select_channels(img, channels);
+    const std::vector<float>& values = channels == img.channels ? img.pixels : selected;
     std::vector<uint8_t> bytes;
     if (!as_float) {  // our own rounding rule, not OIIO's, so every 8-bit path agrees
         bytes.resize(values.size());

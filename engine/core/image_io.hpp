@@ -28,9 +28,16 @@ struct Image {
     float at(int x, int y, int c) const { return pixels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)]; }
 };
 
-// The one float -> 8-bit rule (clamp to [0,1], round to nearest), shared by PNG output,
-// video frames and golden comparisons.
-uint8_t to_unorm8(float v);
+// The one float -> 8-bit rule (clamp to [0,1], round to nearest, halves up), shared by PNG
+// output, video frames and golden comparisons. Inline, so a frame's loop over it vectorises
+// (it is on every written frame's path); x + 0.5 in double is exact, so the truncation is
+// std::lround(x) exactly.
+inline uint8_t to_unorm8(float v) {
+    if (!(v > 0.0f)) return 0;  // also NaN
+    if (v >= 1.0f) return 255;
+    const float x = v * 255.0f;
+    return uint8_t(double(x) + 0.5);
+}
 // Interleaved RGBA8, top row first; grey is replicated, missing alpha is opaque.
 std::vector<uint8_t> to_rgba8(const Image& img);
 
