@@ -151,7 +151,12 @@ std::unique_ptr<GlContext> GlContext::create_headless(const Options& opts) {
 
 void GlContext::install_debug_output(GlContext* self) {
     glEnable(GL_DEBUG_OUTPUT);
-    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    // Synchronous output pins a message to the call that caused it, and costs a GPU driver
+    // CPU time on every call (it may not defer work): only with PATHLET_GL_DEBUG. Without it a
+    // driver may report later, from its own thread (the callback locks); Mesa reports at the
+    // call either way. An error is still caught in the frame it happens.
+    if (std::getenv("PATHLET_GL_DEBUG")) glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    else glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(&GlContext::debug_callback, self);
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
     // Notifications are chatty (buffer placement hints); keep errors, warnings, performance.
