@@ -11,8 +11,9 @@
 #                                      its distance to the llvmpipe render of the reference folder:
 #                                      share of pixels more than 8/255 off (pass: <= 0.5 %)
 #   bench_window/, bench_all/          pathlet bench of every shipped variant at 1920x1080 with the
-#                                      1 s window and with every line (--set window=0): results.json,
-#                                      summary.csv; the printed tables in bench_*.txt
+#                                      1 s window and with every line (--set window=0; there also
+#                                      variant 1 with cull=false): results.json, summary.csv; the
+#                                      printed tables in bench_*.txt
 #   compute_GRAPH.txt, compute.txt     fullscreen passes as fragment against compute (issue 34.5):
 #                                      per pass both medians and compute/fragment, interleaved
 #                                      rounds (scripts/bench-compute.sh); the picture with every
@@ -60,7 +61,7 @@ if [ "$QUICK" = 1 ]; then
 else
   PHANTOM=study RENDER_SIZE=960x540 BENCH_SIZE=1920x1080 FRAMES=100 TIME=4.5 LOOP_TIME=0:9.96:0.04 WINDOW_TIME=9 ROUNDS=3
 fi
-VARIANTS=variant1_lineao,variant2_oit,variant2_oit_ao,variant3_geomfade,isl,variant1_vao
+VARIANTS=variant1_lineao,variant2_oit,variant2_oit_ao,variant3_geomfade,isl,variant1_vao,variant4_opacity
 
 # The shipped graphs: every graphs/*.json the command can find by name.
 graph_dir() {
@@ -149,17 +150,18 @@ else
   say "renders: no llvmpipe reference (scripts/gpu-check.sh --make-reference DIR, then --reference DIR)"
 fi
 
-bench() {  # $1: name, rest: extra options
-  local name=$1
-  shift
+bench() {  # $1: name, $2: graphs, rest: extra options
+  local name=$1 graphs=$2
+  shift 2
   step "bench $name ($BENCH_SIZE, $FRAMES frames a graph)"
-  "$PATHLET" bench "$VARIANTS" --phantom "$PHANTOM" --size "$BENCH_SIZE" --time "$WINDOW_TIME" --frames "$FRAMES" \
+  "$PATHLET" bench "$graphs" --phantom "$PHANTOM" --size "$BENCH_SIZE" --time "$WINDOW_TIME" --frames "$FRAMES" \
     --report "$R/bench_$name" --quiet "$@" >"$R/bench_$name.txt" 2>&1 || { FAILED=1; tail -5 "$R/bench_$name.txt" >&2; }
   say "bench $name:"
   sed -n '/^summary/,$p' "$R/bench_$name.txt" | tee -a "$R/summary.txt"
 }
-bench window
-bench all --set window=0
+bench window "$VARIANTS"
+# Every line, and variant 1 once more unculled: the culling must never be slower than cull=false.
+bench all "$VARIANTS,variant1_lineao" --set window=0 --set "$(( $(tr -cd , <<<"$VARIANTS" | wc -c) + 2 )):cull=false"
 
 step "fullscreen passes: fragment against compute ($BENCH_SIZE, $ROUNDS rounds)"
 # The ports of each graph (the passes with the parameter impl), switched together.

@@ -25,6 +25,8 @@ graphs=$(ls "$SRC"/graphs/*.json | wc -l)
 [ "$(ls "$R"/renders/*.png | wc -l)" -eq "$graphs" ] || fail "not one render per shipped graph ($graphs)"
 [ "$(grep -c ' ok$' "$R/compare.txt")" -eq "$graphs" ] || fail "renders differ from the reference: $(cat "$R/compare.txt")"
 grep -q 'wall fps' "$R/bench_window.txt" || fail "the bench summary has no wall fps column"
+grep -q 'variant4_opacity' "$R/bench_window.txt" || fail "variant 4 is not benched"
+grep -q 'variant1_lineao \[cull=false\]' "$R/bench_all.txt" || fail "every line: no unculled variant 1 beside the culled one"
 grep -Eq '^loop --no-images: [0-9]+ frames, .* [0-9.]+ fps$' "$R/summary.txt" || fail "no render-loop frame rate"
 grep -q '^renderer: llvmpipe' "$R/summary.txt" || fail "the summary does not name the renderer"
 for g in variant1_lineao variant1_vao variant1_stable; do
