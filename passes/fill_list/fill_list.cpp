@@ -22,11 +22,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace {
@@ -38,7 +36,6 @@ class FillList : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         counts_.reset();  // the first frame after setup reads its count back at once
-        capacities_.clear();
         records_ = ctx.connected("records");
         coverage_ = ctx.connected("coverage");
         gbuffer_ = lines::gbuffer_targets(ctx);
@@ -85,14 +82,12 @@ public:
             counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));
             return;
         }
-        // A count of an earlier frame, with the capacity that frame had.
+        // A count of an earlier frame, tagged with the capacity that frame had.
         int events = 0;
         size_t dropped = 0;
         if (const void* p = counts_->poll()) {
             const GLuint count = *static_cast<const GLuint*>(p);
-            const uint64_t seq = counts_->latest_sequence();
-            while (!capacities_.empty() && capacities_.front().first < seq) capacities_.pop_front();
-            const size_t had = capacities_.empty() ? capacity : capacities_.front().second;
+            const size_t had = size_t(counts_->latest_tag());
             last_count_ = count;
             if (count > had) {
                 dropped = count - had;
@@ -105,14 +100,14 @@ public:
                 report_cap(ctx, dropped, count, had);
             } else if (dropped) {
                 std::fprintf(stderr,
-                             "%s: node buffer overflow %llu frame(s) ago: %u fragments for %zu nodes, %zu lost; now "
+                             "%s: node buffer overflow in a recent frame: %u fragments for %zu nodes, %zu lost; now "
                              "%zu nodes (%.1f MiB)\n",
-                             ctx.pass_name().c_str(), (unsigned long long)(counts_frames_ - seq), count, had, dropped,
-                             capacity, double(capacity * oit::kNodeBytes) / 1048576.0);
+                             ctx.pass_name().c_str(), count, had, dropped, capacity,
+                             double(capacity * oit::kNodeBytes) / 1048576.0);
             }
         }
         draw(ctx, capacity);
-        if (counts_->copy(ctx.buffer("counter").id, 0)) capacities_.emplace_back(counts_frames_++, capacity);
+        counts_->copy(ctx.buffer("counter").id, 0, capacity);
         report(ctx, last_count_, capacity, events, dropped);
     }
 
@@ -206,8 +201,6 @@ private:
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
     std::unique_ptr<pathlet::GpuReadback> counts_;          // later frames' counts, without waiting
-    std::deque<std::pair<uint64_t, size_t>> capacities_;    // per copy in flight: its capacity
-    uint64_t counts_frames_ = 0;                            // copies made
     GLuint last_count_ = 0;                                 // the newest count known
 };
 

@@ -16,6 +16,7 @@
 // the node buffer for the frames after it and is reported (stats, stderr).
 #include "segmentation.hpp"
 
+#include <pathlet/gpu_readback.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
@@ -23,6 +24,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,8 +55,6 @@ class OpacityLists : public pathlet::Pass {
 public:
     ~OpacityLists() override {
         if (fbo_) glDeleteFramebuffers(1, &fbo_);
-        if (readback_) glDeleteBuffers(1, &readback_);
-        if (fence_) glDeleteSync(fence_);
     }
 
     void setup(pathlet::PassContext& ctx) override {
@@ -108,7 +108,7 @@ public:
         glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
         const size_t cap = size_t(p.f("max_memory_mb") * 1048576.0);
         max_bytes_ = std::max<size_t>(64, std::min(size_t(std::max<GLint64>(max_block, 0)), cap));
-        if (!readback_) glCreateBuffers(1, &readback_), glNamedBufferStorage(readback_, 4, nullptr, GL_CLIENT_STORAGE_BIT);
+        if (!counts_) counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));
         if (!fbo_) glCreateFramebuffers(1, &fbo_);
     }
 
@@ -122,22 +122,21 @@ public:
         if (max_nodes == 0)
             throw std::runtime_error("max_memory_mb (or GL_MAX_SHADER_STORAGE_BLOCK_SIZE) leaves no room for nodes at " +
                                      std::to_string(size.x) + "x" + std::to_string(size.y));
-        // Last frame's count, if its fence has passed: grow for this frame when it overflowed.
+        // An earlier frame's count, once the GPU is done with it (never waited for), tagged with
+        // that frame's capacity: grow for this frame when it overflowed.
         double dropped = -1;
-        if (fence_ && glClientWaitSync(fence_, 0, 0) != GL_TIMEOUT_EXPIRED) {
-            GLuint count = 0;
-            glGetNamedBufferSubData(readback_, 0, 4, &count);
-            glDeleteSync(fence_);
-            fence_ = nullptr;
-            dropped = count > capacity_ ? double(count - capacity_) : 0.0;
-            if (count > capacity_ && capacity_ < max_nodes) {
+        if (const void* counted = counts_->poll()) {
+            const GLuint count = *static_cast<const GLuint*>(counted);
+            const size_t had = size_t(counts_->latest_tag());
+            dropped = count > had ? double(count - had) : 0.0;
+            if (count > had && had < max_nodes) {
                 ++events_;
                 wanted_ = std::max(wanted_, size_t(double(count) * 1.25) + 1);
                 std::fprintf(stderr, "%s: node buffer overflow: %u fragments for %zu nodes at %dx%d; grown to %zu nodes\n",
-                             ctx.pass_name().c_str(), count, capacity_, size.x, size.y, std::min(wanted_, max_nodes));
-            } else if (count > capacity_) {
+                             ctx.pass_name().c_str(), count, had, size.x, size.y, std::min(wanted_, max_nodes));
+            } else if (count > had) {
                 std::fprintf(stderr, "%s: a frame dropped %zu of %u fragments: the node buffer is at its cap (max_memory_mb)\n",
-                             ctx.pass_name().c_str(), size_t(count - capacity_), count);
+                             ctx.pass_name().c_str(), size_t(count - had), count);
             }
         }
         const size_t by_pixels = size_t(std::ceil(p.f("nodes_per_pixel") * double(pixels)));
@@ -167,9 +166,7 @@ public:
         prog_->use();  // lists and source on their bindings by declaration
         drawer_.draw(ctx, *prog_);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        glCopyNamedBufferSubData(lists.id, readback_, GLintptr(4 * kCountWord), 0, 4);
-        if (fence_) glDeleteSync(fence_);
-        fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        counts_->copy(lists.id, 4 * kCountWord, capacity_);
 
         ctx.stat("segments_total", double(segments_));
         ctx.stat("list_width", size.x);
@@ -185,8 +182,8 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    GLuint fbo_ = 0, readback_ = 0;
-    GLsync fence_ = nullptr;
+    GLuint fbo_ = 0;
+    std::unique_ptr<pathlet::GpuReadback> counts_;  // the lists' node counts, a frame or more late
     size_t segments_bytes_ = 0, segments_ = 0, capacity_ = 0, wanted_ = 0, max_bytes_ = 0;
     long long events_ = 0;
     glm::vec2 range_{0.0f, 1.0f};

@@ -7,7 +7,7 @@ namespace pathlet {
 
 GpuReadback::GpuReadback(size_t bytes, int slots)
     : bytes_(std::max<size_t>(bytes, 1)), stride_((std::max<size_t>(bytes, 1) + 15) / 16 * 16),
-      fence_(size_t(std::max(slots, 1)), nullptr), sequence_(fence_.size(), 0) {
+      fence_(size_t(std::max(slots, 1)), nullptr), tag_(fence_.size(), 0) {
     const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     const GLsizeiptr size = GLsizeiptr(stride_ * fence_.size());
     glCreateBuffers(1, &buffer_);
@@ -24,12 +24,12 @@ GpuReadback::~GpuReadback() {
     }
 }
 
-bool GpuReadback::copy(GLuint buffer, size_t offset) {
+bool GpuReadback::copy(GLuint buffer, size_t offset, uint64_t tag) {
     if (fence_[size_t(next_)]) poll();  // frees the slot if its copy is done
     if (fence_[size_t(next_)] || !mapped_) return false;
     glCopyNamedBufferSubData(buffer, buffer_, GLintptr(offset), GLintptr(size_t(next_) * stride_), GLsizeiptr(bytes_));
     fence_[size_t(next_)] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    sequence_[size_t(next_)] = copies_++;
+    tag_[size_t(next_)] = tag;
     next_ = (next_ + 1) % int(fence_.size());
     return true;
 }
@@ -46,7 +46,7 @@ const void* GpuReadback::poll() {
         glDeleteSync(fence_[slot]);
         fence_[slot] = nullptr;
         latest_.assign(mapped_ + slot * stride_, mapped_ + slot * stride_ + bytes_);
-        latest_sequence_ = sequence_[slot];
+        latest_tag_ = tag_[slot];
         got = true;
     }
     return got ? latest_.data() : nullptr;

@@ -111,3 +111,21 @@ TEST(OpacityLists, APointArrayTravelsWithItsPointsThroughRepair) {
     EXPECT_EQ(v->values, (std::vector<float>{2, 1, 5, 1, 1}));      // vectors as their magnitude
     pl.check_consistent("test");
 }
+
+// The lists learn an overflow from an earlier frame's count, read without waiting (the count
+// arrives once the GPU is done), and grow: a few frames later every fragment has a node.
+TEST(OpacityLists, AnOverflowFoundAFrameLateGrowsTheListsUntilEveryFragmentFits) {
+    FrameRunner run(kGraph, with({"opacity_lists.nodes_per_pixel=0.01"}), three_lines(), kSize,
+                    camera_down_z(three_lines(), {5, 3, 0}, 30, 30, kSize), {"oo_lists"});
+    std::vector<uint32_t> l;
+    run.frame(0.0);
+    l = run.words("oo_lists");  // also lets the first frame's copy finish
+    const uint32_t fragments = l.at(6);
+    ASSERT_GT(fragments, l.at(5)) << "the first frame must overflow, or the test says nothing";
+    for (int k = 0; k < 4; ++k) {
+        run.frame(0.0);
+        l = run.words("oo_lists");
+    }
+    EXPECT_EQ(l.at(6), fragments) << "the same frame, the same fragments";
+    EXPECT_GE(l.at(5), l.at(6)) << "grown to hold them";
+}

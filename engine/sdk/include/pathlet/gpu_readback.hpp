@@ -23,21 +23,22 @@ public:
     ~GpuReadback();  // needs the GL context current
 
     // Copies `bytes` from `buffer` at `offset` (a GL copy; what shaders wrote needs a
-    // GL_BUFFER_UPDATE_BARRIER_BIT first) and fences it. False when every slot is in flight.
-    bool copy(GLuint buffer, size_t offset);
+    // GL_BUFFER_UPDATE_BARRIER_BIT first) and fences it, with `tag`: what the caller knew when
+    // it copied (e.g. the capacity the count is to be compared with). False when every slot is
+    // in flight.
+    bool copy(GLuint buffer, size_t offset, uint64_t tag = 0);
     // The newest copy the GPU has finished since the last call, or nullptr; never waits.
     const void* poll();
-    // Which copy poll() last returned: 0 for the first successful copy(), 1 for the next, ...
-    // (to pair a count with what the CPU knew when it was copied).
-    uint64_t latest_sequence() const { return latest_sequence_; }
+    // The tag of the copy poll() last returned.
+    uint64_t latest_tag() const { return latest_tag_; }
 
 private:
     size_t bytes_, stride_;
     GLuint buffer_ = 0;
     const unsigned char* mapped_ = nullptr;
     std::vector<GLsync> fence_;
-    std::vector<uint64_t> sequence_;  // per slot, the copy it holds
-    uint64_t copies_ = 0, latest_sequence_ = 0;
+    std::vector<uint64_t> tag_;  // per slot, its copy's tag
+    uint64_t latest_tag_ = 0;
     std::vector<unsigned char> latest_;
     int next_ = 0;  // the slot the next copy goes to; the oldest in flight is at next_ too when all are
 };
