@@ -1,5 +1,6 @@
 // Image files (PNG/EXR round trips, atomic writes, errors naming the file) and capture paths.
 #include "image_io.hpp"
+#include "error_text.hpp"
 #include "scratch_dir.hpp"
 
 #include <gtest/gtest.h>
@@ -24,14 +25,7 @@ Image test_image(int w, int h, int channels, float scale = 1.0f) {
     return img;
 }
 
-std::string what_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string what_of(const std::function<void()>& f) { return pathlet::test::error_text<std::exception>(f); }
 
 TEST(ExpandPattern, SubstitutesNamesAndPaddedFrames) {
     std::map<std::string, std::string> vars{{"graph", "lineao"}, {"out", "renders"}};

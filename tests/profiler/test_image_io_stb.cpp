@@ -3,6 +3,7 @@
 // OpenImageIO's reading and writing of the same files, and EXR/TIFF/JPEG refused with the file
 // and the reason, leaving nothing behind. (tests/bundle/test_lean_bundle.sh runs the lean build.)
 #include "image_io_stb.hpp"
+#include "error_text.hpp"
 #include "scratch_dir.hpp"
 
 #include <gtest/gtest.h>
@@ -26,14 +27,7 @@ Image ramp(int w, int h, int channels) {
     return img;
 }
 
-std::string what_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string what_of(const std::function<void()>& f) { return pathlet::test::error_text<std::exception>(f); }
 
 TEST(ImageIoStb, PngRoundTripMatchesOpenImageIoBothWays) {
     ScratchDir dir;
