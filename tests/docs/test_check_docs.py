@@ -18,8 +18,9 @@ README = open(os.path.join(ROOT, "README.md"), encoding="utf-8").read()
 failures = []
 
 
-def tree(work, readme):
-    """A copy of ROOT (links to everything but README.md and docs/, which are copied)."""
+def tree(work, readme, docs=None):
+    """A copy of ROOT (links to everything but README.md and docs/, which are copied); `docs`:
+    {name: text} replaces files of docs/."""
     if os.path.exists(work):
         shutil.rmtree(work)
     os.makedirs(work)
@@ -29,6 +30,9 @@ def tree(work, readme):
     shutil.copytree(os.path.join(ROOT, "docs"), os.path.join(work, "docs"))
     with open(os.path.join(work, "README.md"), "w", encoding="utf-8") as f:
         f.write(readme)
+    for name, text in (docs or {}).items():
+        with open(os.path.join(work, "docs", name), "w", encoding="utf-8") as f:
+            f.write(text)
     return work
 
 
@@ -39,8 +43,8 @@ def mutate(pattern, new, what, text=README):
     return mutated
 
 
-def expect(name, readme, only, messages):
-    work = tree(os.path.join(tempfile.gettempdir(), f"pathlet_check_docs_{os.getpid()}"), readme)
+def expect(name, readme, only, messages, docs=None):
+    work = tree(os.path.join(tempfile.gettempdir(), f"pathlet_check_docs_{os.getpid()}"), readme, docs)
     try:
         r = subprocess.run([sys.executable, CHECK, work, PATHLET, "--only", only], capture_output=True, text=True)
     finally:
@@ -71,6 +75,14 @@ broken = mutate(r"^(build/bin/pathlet view )(\w+)", r"\1\2_gone", "view line wit
 expect("a misspelt pathlet, option, --set name, command and graph", broken, "commands",
        ["did you mean the pathlet command?", "'pathlet render --sise': no such option", "_typo=", "unknown",
         "'pathlet grahp': no such command", "_gone': no shipped graph or file of that name"])
+# A misspelt hook file: a shipped one in docs/ and the reader's own in the README (only the
+# file the README asks the reader to write, my_fade.glsl, is left unchecked).
+OPACITY = open(os.path.join(ROOT, "docs", "opacity-optimization.md"), encoding="utf-8").read()
+expect("a misspelt shipped hook and a misspelt reader's hook",
+       mutate(r"(--set \S*color_hook=)my_fade\.glsl", r"\1my_fdae.glsl", "--set of my_fade.glsl"), "commands",
+       ["hook file 'my_fdae.glsl' not found", "hook file 'importance_naer.glsl' not found"],
+       docs={"opacity-optimization.md": mutate(r"(color_hook=)importance_near\.glsl", r"\1importance_naer.glsl",
+                                               "--set of a shipped hook file", OPACITY)})
 expect("too many lines", README + "more\n" * 451, "length", ["more than 450"])
 
 for f in failures:
