@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
-# scripts/gpu-check.sh on llvmpipe, --quick: it makes a reference, runs the check against it and
-# leaves one tarball with every part a GPU run needs (limits, renders that match the reference,
-# both benches with their summaries, the render loop). What a GPU measures is not checked here;
-# that the script runs through and returns its results is.
+# scripts/gpu-check.sh on llvmpipe, --quick: it runs the check against the committed llvmpipe
+# renders of every shipped graph (tests/gpu_check/goldens/, --quick's sizes) and leaves one
+# tarball with every part a GPU run needs (limits, renders that match the goldens, both benches
+# with their summaries, the render loop). What a GPU measures is not checked here; that the
+# script runs through, returns its results and renders what the goldens show is.
 #   test_gpu_check.sh SOURCE_DIR PATHLET
+#   PATHLET_UPDATE_GOLDENS=1 test_gpu_check.sh ...   re-renders the goldens (look at each before committing)
 set -euo pipefail
 SRC=$1 PATHLET=$2
+GOLDENS=$SRC/tests/gpu_check/goldens
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-"$SRC/scripts/gpu-check.sh" --quick --pathlet "$PATHLET" --make-reference "$WORK/ref" >/dev/null 2>&1
-"$SRC/scripts/gpu-check.sh" --quick --pathlet "$PATHLET" --reference "$WORK/ref" "$WORK/out" >"$WORK/printed" 2>&1 ||
+if [ "${PATHLET_UPDATE_GOLDENS:-0}" = 1 ]; then
+  rm -rf "$GOLDENS"
+  "$SRC/scripts/gpu-check.sh" --quick --pathlet "$PATHLET" --make-reference "$GOLDENS"
+  rm -f "$GOLDENS/info-gl.txt"  # this machine's, not a golden
+  echo "gpu_check: goldens re-rendered into $GOLDENS"; exit 0
+fi
+"$SRC/scripts/gpu-check.sh" --quick --pathlet "$PATHLET" --reference "$GOLDENS" "$WORK/out" >"$WORK/printed" 2>&1 ||
   { cat "$WORK/printed"; echo "FAIL: the check exited non-zero"; exit 1; }
 tarballs=("$WORK"/out/gpu-check-*.tar.gz)
 [ ${#tarballs[@]} -eq 1 ] && [ -f "${tarballs[0]}" ] || { echo "FAIL: expected one tarball, got: ${tarballs[*]}"; exit 1; }
@@ -23,7 +31,8 @@ grep -q '^GL_MAX_IMAGE_UNITS 8$' "$R/info-gl-minimum.txt" || fail "info-gl-minim
 grep -Eq '^PATHLET_BUILD build: (full|lean)' "$R/info-gl.txt" || fail "info-gl.txt does not say which build made it"
 graphs=$(ls "$SRC"/graphs/*.json | wc -l)
 [ "$(ls "$R"/renders/*.png | wc -l)" -eq "$graphs" ] || fail "not one render per shipped graph ($graphs)"
-[ "$(grep -c ' ok$' "$R/compare.txt")" -eq "$graphs" ] || fail "renders differ from the reference: $(cat "$R/compare.txt")"
+[ "$(grep -c ' ok$' "$R/compare.txt")" -eq "$graphs" ] ||
+  fail "renders differ from the goldens (a new graph: PATHLET_UPDATE_GOLDENS=1 $0 ...): $(cat "$R/compare.txt")"
 grep -q 'wall fps' "$R/bench_window.txt" || fail "the bench summary has no wall fps column"
 grep -q 'variant4_opacity' "$R/bench_window.txt" || fail "variant 4 is not benched"
 grep -q 'variant1_lineao \[cull=false\]' "$R/bench_all.txt" || fail "every line: no unculled variant 1 beside the culled one"
@@ -33,4 +42,4 @@ for g in variant1_lineao variant1_vao variant1_stable; do
   grep -q ' \* ' "$R/compute_$g.txt" || fail "compute_$g.txt has no fragment/compute row"
 done
 grep -q '^fragment vs compute picture: max levels 0 ' "$R/summary.txt" || fail "the ports' pictures differ (compute.txt)"
-echo "gpu-check --quick: every part present; $graphs renders match the reference"
+echo "gpu-check --quick: every part present; $graphs renders match the goldens"
