@@ -10,7 +10,7 @@ for arg in "$@"; do
   esac
 done
 PKGS=(
-  build-essential cmake pkg-config                  # toolchain
+  build-essential cmake pkg-config ccache           # toolchain (ccache: the lean bundle's test reuses objects)
   libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri   # GL 4.5 via EGL; llvmpipe when there is no GPU
   libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev
   libopenimageio-dev openimageio-tools              # image files (tools: OIIO's CMake targets expect them)
@@ -30,6 +30,9 @@ PKGS=(
 )
 OPTIONAL=(ffmpeg python3-pandas)                    # MP4 export; DataFrames from pathlet (else lists of dicts)
 [ "$SLURM" = 1 ] && PKGS+=(slurm-wlm munge)         # tests/slurm: slurmctld + slurmd on localhost
+# In CI (CI set, not false/0) the optional ones are required: a test that needs one fails there
+# instead of skipping (tests/support/optional_tool.sh).
+case "${CI:-}" in ""|false|0) ;; *) PKGS+=("${OPTIONAL[@]}"); OPTIONAL=() ;; esac
 missing=()
 for p in "${PKGS[@]}" "${OPTIONAL[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -44,6 +47,6 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${PKGS[@]}" >/dev/null
-$SUDO apt-get install -y -qq --no-install-recommends "${OPTIONAL[@]}" >/dev/null 2>&1 \
+[ ${#OPTIONAL[@]} -eq 0 ] || $SUDO apt-get install -y -qq --no-install-recommends "${OPTIONAL[@]}" >/dev/null 2>&1 \
   || echo "install-deps: ffmpeg or python3-pandas not installed; videos are skipped (image sequences still work),
   pathlet tables are lists of dicts"

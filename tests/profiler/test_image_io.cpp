@@ -2,6 +2,7 @@
 #include "image_io.hpp"
 #include "error_text.hpp"
 #include "scratch_dir.hpp"
+#include "unorm8_reference.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 namespace pathlet {
 namespace {
@@ -133,6 +135,29 @@ TEST(ImageIo, Rgba8ConversionReplicatesGreyAndAddsAlpha) {
     grey.pixels = {0.5f};
     EXPECT_EQ(to_rgba8(grey), (std::vector<uint8_t>{128, 128, 128, 255}));
     EXPECT_EQ(to_unorm8(std::nanf("")), 0);
+}
+
+// to_unorm8 against the rule written out on its own (unorm8_reference.hpp), where rounding can
+// go wrong: every level k/255 and every half-way point (k + 0.5)/255, i.e. j/510, and the floats
+// just below and above each; then out of range, infinities and NaN.
+TEST(ImageIo, ToUnorm8RoundsToNearestAtEveryHalfWayPointAndItsNeighbours) {
+    int rounded_up = 0;
+    for (int j = 0; j <= 510; ++j) {
+        const float c = float(double(j) / 510.0);
+        for (const float v : {std::nextafter(c, -1.0f), c, std::nextafter(c, 2.0f)}) {
+            ASSERT_EQ(int(to_unorm8(v)), test::reference_unorm8(v)) << "v = " << v << " (" << j << "/510 and neighbours)";
+            rounded_up += j % 2 == 1 && v == c && int(to_unorm8(v)) == (j + 1) / 2;
+        }
+    }
+    EXPECT_EQ(rounded_up, 255) << "halves up: the float nearest each half-way point goes to the level above";
+    EXPECT_EQ(int(to_unorm8(0.5f)), 128);
+    EXPECT_EQ(int(to_unorm8(0.2f)), 51);
+    EXPECT_EQ(int(to_unorm8(1.0f / 510.0f)), 1);
+    EXPECT_EQ(int(to_unorm8(std::nextafter(1.0f / 510.0f, 0.0f))), 0);
+    for (const float v : {-1.0f, -0.0f, 1.5f, 1e30f, std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(), std::nanf("")})
+        EXPECT_EQ(int(to_unorm8(v)), test::reference_unorm8(v)) << "v = " << v;
+    EXPECT_EQ(test::reference_unorm8(std::numeric_limits<float>::infinity()), 255);
 }
 
 }  // namespace

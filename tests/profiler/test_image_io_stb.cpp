@@ -5,6 +5,7 @@
 #include "image_io_stb.hpp"
 #include "error_text.hpp"
 #include "scratch_dir.hpp"
+#include "unorm8_reference.hpp"
 
 #include <gtest/gtest.h>
 
@@ -44,7 +45,8 @@ TEST(ImageIoStb, PngRoundTripMatchesOpenImageIoBothWays) {
         EXPECT_FALSE(a.is_float);
         ASSERT_EQ(a.pixels.size(), img.pixels.size());
         for (size_t i = 0; i < img.pixels.size(); ++i) {
-            EXPECT_FLOAT_EQ(a.pixels[i], float(to_unorm8(img.pixels[i])) / 255.0f) << channels << " channels, value " << i;
+            EXPECT_FLOAT_EQ(a.pixels[i], float(test::reference_unorm8(img.pixels[i])) / 255.0f)
+                << channels << " channels, value " << i;
             EXPECT_FLOAT_EQ(b.pixels[i], a.pixels[i]) << "OpenImageIO reads stb's file differently at " << i;
             EXPECT_FLOAT_EQ(c.pixels[i], a.pixels[i]) << "stb reads OpenImageIO's file differently at " << i;
         }

@@ -4,14 +4,15 @@ import json
 import os
 import shutil
 import subprocess
+import sys
 
-import pytest
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from optional_tool import require_tools  # noqa: E402  (tests/support: skip, or fail in CI)
 
 
 def test_compare_fades_notebook_runs(root, tmp_path):
+    require_tools("jupyter-nbconvert")
     nbconvert = shutil.which("jupyter-nbconvert")
-    if not nbconvert:
-        pytest.skip("jupyter-nbconvert is not installed (scripts/install-deps.sh installs it)")
     env = dict(os.environ, PATHLET_EXAMPLE_SIZE="160x90", PATHLET_EXAMPLE_PHANTOM="small",
                PATHLET_EXAMPLE_FRAMES="2", PATHLET_EXAMPLE_RAYS="16", MPLBACKEND="module://matplotlib_inline.backend_inline")
     r = subprocess.run([nbconvert, "--to", "notebook", "--execute", "--ExecutePreprocessor.timeout=300",

@@ -3,7 +3,8 @@
 # scripts/slurm/render_array.sbatch and bench_array.sbatch as 3-task arrays, then the dependent
 # steps (assemble_video.sbatch when ffmpeg is there; the bench merge), and the results must be
 # a single-machine run's: the same frames byte for byte, every bench run merged.
-# Exit 77 (ctest: skipped) with the reason where Slurm is not installed or cannot start.
+# Exit 77 (ctest: skipped) with the reason where Slurm is not installed or cannot start; in CI
+# (CI set) that fails instead (tests/support/optional_tool.sh).
 set -euo pipefail
 SRC=${PATHLET_SOURCE_DIR:?}
 PATHLET=${PATHLET_CLI:?}
@@ -11,9 +12,9 @@ source "$SRC/tests/slurm/slurm_cluster.sh"
 D=$(mktemp -d "${TMPDIR:-/tmp}/pathlet_slurm.XXXXXX")
 trap 'slurm_down; rm -rf "$D"' EXIT
 fail() { echo "FAIL: $*" >&2; for f in "$D"/work/*.log "$D"/slurm*.log; do [ -f "$f" ] && { echo "--- $f" >&2; tail -5 "$f" >&2; }; done; exit 1; }
-if ! slurm_up "$D/slurm"; then
-  echo "SKIP: Slurm cannot start here: $SLURM_WHY"
-  exit 77
+if ! slurm_up "$D/slurm"; then  # skipped, or failed in CI (tests/support/optional_tool.sh)
+  "$SRC/tests/support/optional_tool.sh" --missing "Slurm cannot start here: $SLURM_WHY"
+  exit $?
 fi
 echo "slurm: one node, $(sinfo -h -N -o '%N %c CPUs %t')"
 mkdir -p "$D/work"
@@ -32,7 +33,9 @@ bjob=$(sbatch --parsable "${common[@]}" --array=0-2 --export="$bench_env" "$SRC/
 mjob=$(sbatch --parsable "${common[@]}" --dependency=afterok:"$bjob" --export="$bench_env,MERGE=1,SHARDS=3" \
   "$SRC/scripts/slurm/bench_array.sbatch")
 jobs=("$rjob" "$bjob" "$mjob")
-if command -v ffmpeg >/dev/null; then
+video=0
+"$SRC/tests/support/optional_tool.sh" ffmpeg && video=1 || { [ $? = 77 ] || exit 1; }  # no video step without ffmpeg, except in CI
+if [ "$video" = 1 ]; then
   jobs+=("$(sbatch --parsable "${common[@]}" --dependency=afterok:"$rjob" \
     --export="ALL,GRAPH_NAME=variant1_lineao,OUT=$D/render,VIDEO=$D/render.mp4" "$SRC/scripts/slurm/assemble_video.sbatch")")
 fi

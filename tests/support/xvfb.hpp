@@ -12,9 +12,7 @@ namespace pathlet::test {
 
 class Xvfb {
 public:
-    // True when an Xvfb binary is on PATH (tests skip with a message otherwise).
-    static bool available() { return std::system("command -v Xvfb >/dev/null 2>&1") == 0; }
-
+    // A test first asks for the binary: PATHLET_REQUIRE_TOOLS("Xvfb") (optional_tool.hpp).
     Xvfb() {
         int fds[2];
         if (pipe(fds) != 0) return;

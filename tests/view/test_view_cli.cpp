@@ -1,5 +1,6 @@
 // `pathlet view` in a real window under a private Xvfb: its screenshot is the headless render
 // of the same frame, a --set changes it as for render, no display is a clear error.
+#include "../support/optional_tool.hpp"
 #include "../support/xvfb.hpp"
 #include "image_io.hpp"
 
@@ -43,7 +44,7 @@ const std::string kScene = src("graphs/demo_blur.json") + " --data " + src("test
 }  // namespace
 
 TEST(ViewCli, ScreenshotEqualsHeadlessRenderAndSetChangesIt) {
-    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     fs::path d = work();
@@ -75,7 +76,7 @@ TEST(ViewCli, NoDisplayIsAClearError) {
 // and the s key writes the graph output; --time starts paused (two runs of different length
 // show the same frame) and space plays (the clock moves, so the picture does).
 TEST(ViewCli, ScriptedOrbitZoomPlayAndScreenshotKey) {
-    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     fs::path d = work();
@@ -117,7 +118,7 @@ TEST(ViewCli, BadScriptIsAClearErrorNamingFileAndEvent) {
 }
 
 TEST(ViewCli, ScriptedParameterChangeEqualsSetAndShowsInTheWindow) {
-    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     fs::path d = work();
@@ -139,7 +140,7 @@ TEST(ViewCli, ScriptedParameterChangeEqualsSetAndShowsInTheWindow) {
 }
 
 TEST(ViewCli, BrokenGraphKeepsTheLastGoodImageAndReportsTheError) {
-    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     fs::path d = work();
@@ -169,7 +170,7 @@ TEST(ViewCli, BrokenGraphKeepsTheLastGoodImageAndReportsTheError) {
 // is refused with the command that trusts it, the last good graph keeps running, and the
 // folder's plugin is never opened (its constructor would write the marker file).
 TEST(ViewCli, SwitchingToAGraphWithAnUntrustedPluginFolderLoadsNothing) {
-    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     fs::path d = work();

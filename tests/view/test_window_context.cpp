@@ -1,5 +1,6 @@
 // The windowed context of `pathlet view`: GLFW asks for 4.5 core under a private Xvfb, the
 // engine adopts it (same error capture as headless) and renders into the window.
+#include "../support/optional_tool.hpp"
 #include "../support/xvfb.hpp"
 #include "gl_context.hpp"
 
@@ -30,7 +31,7 @@ struct Window {
 }  // namespace
 
 TEST(WindowContext, AdoptsGlfwCoreContextUnderXvfb) {
-    if (!test::Xvfb::available()) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): window tests skipped";
+    PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     Window win;
