@@ -8,6 +8,7 @@
 #include "profiler/profiler.hpp"
 
 #include <pathlet/buffer_texture.hpp>
+#include <pathlet/gpu_fence.hpp>
 #include <pathlet/gl_limits.hpp>
 
 #include <cmath>
@@ -251,6 +252,8 @@ uint64_t PassContext::frame_index() const { return impl_->exec->frame_.index; }
 double PassContext::time() const { return impl_->exec->frame_.time; }
 const Camera& PassContext::camera() const { return impl_->exec->frame_.camera; }
 
+void PassContext::frame_incomplete(uint64_t frame) { impl_->exec->incomplete_.insert(frame); }
+
 void PassContext::stat(const std::string& name, double value) {
     if (impl_->exec->profiler_) impl_->exec->profiler_->add_stat(impl_->pass().name, name, value);
 }
@@ -475,6 +478,8 @@ void Executor::reparam(size_t i) {
 
 void Executor::run_frame(const FrameInfo& f) {
     frame_ = f;
+    advance_gpu_frame();  // the frame clock of pathlet/gpu_fence.hpp
+    frames_in_flight_.begin_frame();
     // Debug groups cost a message round trip per pass on Mesa; only with PATHLET_GL_DEBUG.
     static const bool groups = std::getenv("PATHLET_GL_DEBUG") != nullptr;
     if (profiler_) profiler_->begin_frame(f.index);
@@ -510,8 +515,21 @@ void Executor::run_frame(const FrameInfo& f) {
     check_gl("(one of this frame's passes; PATHLET_GL_DEBUG=1 narrows it down)", "execute");
     gl_.set_scope("");
     if (profiler_) profiler_->end_frame();
+    frames_in_flight_.end_frame();
     // History: what was written this frame becomes next frame's @prev.
     for (auto& [r, prev] : history_prev_) std::swap(prev, slots_[size_t(cg_.resources[size_t(r)].slot)]);
+}
+
+void Executor::finish() {
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        const CompiledPass& cp = cg_.passes[i];
+        try {
+            PassContext ctx(contexts_[i].get());
+            passes_[i]->finish(ctx);
+        } catch (const std::exception& e) {
+            throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed at the end of the run: " + e.what());
+        }
+    }
 }
 
 // The documented state every pass starts from (pass.hpp): whatever the previous pass changed.

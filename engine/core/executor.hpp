@@ -4,6 +4,7 @@
 // the pass.
 #pragma once
 
+#include "frames/frames_in_flight.hpp"
 #include "graph/graph_model.hpp"
 
 #include <pathlet/gpu_scene.hpp>
@@ -12,6 +13,7 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,7 +42,13 @@ public:
     Executor& operator=(const Executor&) = delete;
 
     void setup();                         // resources, pass instances, Pass::setup()
-    void run_frame(const FrameInfo& f);   // every pass in order, then history swap
+    // Every pass in order, then history swap; first waits until fewer than PATHLET_FRAMES_IN_FLIGHT
+    // frames are in flight on the GPU (frames/frames_in_flight.hpp).
+    void run_frame(const FrameInfo& f);
+    // The end of a run: every pass's finish() (late counts waited for and reported).
+    void finish();
+    // Frames a pass reported as incomplete (PassContext::frame_incomplete), by FrameInfo::index.
+    const std::set<uint64_t>& incomplete_frames() const { return incomplete_; }
     // After the owner of the compiled graph changed passes[i].params: the pass sees the new
     // parameters and its setup() runs again (the Pass contract), without rebuilding anything
     // else. Throws PassError naming the pass; the pass then keeps its old parameters.
@@ -79,6 +87,8 @@ private:
     // The most units and binding points any pass was given: what the reset between passes unbinds.
     int max_samplers_ = 0, max_images_ = 0, max_bindings_ = 0, max_blocks_ = 0;
     FrameInfo frame_;
+    FramesInFlight frames_in_flight_;
+    std::set<uint64_t> incomplete_;
 };
 
 }  // namespace pathlet

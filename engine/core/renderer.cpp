@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -154,6 +155,14 @@ static void warm_up_by_time(double seconds, Profiler& profiler, const std::funct
     profiler.end_warmup(since(start), settled);
 }
 
+std::string incomplete_frames_line(const RenderResult& r) {
+    if (r.incomplete_frames.empty()) return "";
+    std::string list;
+    for (size_t f : r.incomplete_frames) list += (list.empty() ? "" : ", ") + std::to_string(f);
+    return "incomplete frames: " + std::to_string(r.incomplete_frames.size()) + " of " + std::to_string(r.frames) +
+           " (" + list + ")";
+}
+
 RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
     RenderResult res;
@@ -225,6 +234,7 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
 
     size_t done = 0;
     std::set<std::string> cleaned;  // output folders cleared of stale temps
+    std::map<uint64_t, size_t> frame_number;  // executor index -> output frame number (not warm-up)
     for (size_t i = 0; i < times.size(); ++i) {
         if (!mine(i)) continue;
         if (stopped()) {
@@ -232,6 +242,7 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
             break;
         }
         double t = times[i];
+        frame_number[index] = i;
         exec.run_frame({index++, t, camera_at(t)});
         std::vector<AsyncOutput::Capture> captures;
         for (const auto& out : cg.outputs) {
@@ -277,6 +288,10 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
         if (opt.on_progress) opt.on_progress(done, count);
         if (opt.on_frames) opt.on_frames(done, written(), count);
     }
+    exec.finish();  // late counts waited for: every incomplete frame is known
+    for (uint64_t k : exec.incomplete_frames())
+        if (auto it = frame_number.find(k); it != frame_number.end()) res.incomplete_frames.push_back(it->second);
+    std::sort(res.incomplete_frames.begin(), res.incomplete_frames.end());
     const auto t0 = std::chrono::steady_clock::now();
     if (output) output->finish();
     res.output_drain_s = seconds_since(t0);

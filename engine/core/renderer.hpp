@@ -90,6 +90,9 @@ struct RenderResult {
     // for the writers (back-pressure), and the final wait until every file is written.
     double output_s = 0, output_drain_s = 0;
     std::vector<std::string> files;  // written images/videos
+    // Frames a pass reported as incomplete (fragments dropped), numbered as the output files are,
+    // ascending; counts still in flight at the end were waited for (Executor::finish()).
+    std::vector<size_t> incomplete_frames;
     Profiler profiler;
     CompiledGraph compiled;
 };
@@ -99,6 +102,10 @@ struct RenderResult {
 class Executor;
 RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t frame)>& on_frame = {});
+
+// "incomplete frames: N of M (3, 4, 11)" for a render where a pass dropped anything, else "":
+// the last stderr line of render, bench and Python's render (the frames are written anyway).
+std::string incomplete_frames_line(const RenderResult& r);
 
 // Name of a graph: its "name" field, else the file stem.
 std::string graph_display_name(const GraphFile& g);

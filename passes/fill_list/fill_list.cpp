@@ -5,15 +5,16 @@
 // same raster also writes variant 2's opaque G-buffer for LineAO (what a separate gbuffer pass
 // would draw: one raster of the window instead of two, the same lists).
 //
-// Overflow is never silent. The first frame after setup reads the node counter back after the
-// draw (a wait, once): on overflow the buffer grows (x1.25 the count, within max_memory_mb and
-// the GL buffer-texture limit) and the frame's lists are rebuilt, so a single picture is whole.
-// Later frames never wait (issue 34: a GPU idles while the CPU waits, and its clock drops): the
-// counter is copied through a fenced ring (pathlet::GpuReadback) and read a frame or two late;
-// the buffer grows ahead when a frame used more than kGrowAt of it, to kHeadroom x that count.
-// A frame that still overflowed lost fragments: that is logged and counted (stats) when its
-// count arrives, and the buffer grows for the next. If even the cap is too small, the frame says
-// how many fragments it lost.
+// Overflow is never silent. The first frame after the graph is built reads the node counter back
+// after the draw (a wait, once): on overflow the buffer grows (x1.25 the count, within
+// max_memory_mb and the GL buffer-texture limit) and the frame's lists are rebuilt, so a single
+// picture is whole. Later frames never wait (issue 34: a GPU idles while the CPU waits, and its
+// clock drops), nor does a parameter change (setup() again): every frame's counter is copied
+// through a fenced ring (pathlet::GpuReadback) and read when the GPU is done, every count in
+// order; the buffer grows ahead when a frame used more than kGrowAt of it, to kHeadroom x that
+// count. A frame that still overflowed lost fragments: it is logged, counted (stats) and
+// reported as incomplete (PassContext::frame_incomplete) when its count arrives, or at the end of
+// the run (finish() waits for the counts in flight), and the buffer grows for the next.
 #include <pathlet/lines.hpp>
 #include <pathlet/gpu_readback.hpp>
 #include <pathlet/oit.hpp>
@@ -35,7 +36,8 @@ namespace oit = pathlet::oit;
 class FillList : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        counts_.reset();  // the first frame after setup reads its count back at once
+        // counts_ stays: only the first frame after the graph is built waits for its count (a
+        // parameter change must not drain the GPU; what overflows after it is found late).
         records_ = ctx.connected("records");
         coverage_ = ctx.connected("coverage");
         gbuffer_ = lines::gbuffer_targets(ctx);
@@ -82,36 +84,54 @@ public:
             counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));
             return;
         }
-        // A count of an earlier frame, tagged with the capacity that frame had.
-        int events = 0;
-        size_t dropped = 0;
-        if (const void* p = counts_->poll()) {
-            const GLuint count = *static_cast<const GLuint*>(p);
-            const size_t had = size_t(counts_->latest_tag());
-            last_count_ = count;
-            if (count > had) {
-                dropped = count - had;
-                ++events;
-                ++events_total_;
-            }
-            if (double(count) > kGrowAt * double(capacity) && capacity < max_nodes_)
-                capacity = ensure_capacity(ctx, std::min(max_nodes_, size_t(kHeadroom * double(count)) + 1));
-            if (dropped && had >= max_nodes_) {
-                report_cap(ctx, dropped, count, had);
-            } else if (dropped) {
-                std::fprintf(stderr,
-                             "%s: node buffer overflow in a recent frame: %u fragments for %zu nodes, %zu lost; now "
-                             "%zu nodes (%.1f MiB)\n",
-                             ctx.pass_name().c_str(), count, had, dropped, capacity,
+        // Every count that arrived, in frame order, each tagged with the capacity its frame had.
+        Late late;
+        counts_->poll([&](const pathlet::GpuReadback::Result& r) { take_count(ctx, r, late); });
+        if (double(late.peak) > kGrowAt * double(capacity) && capacity < max_nodes_) {
+            const size_t before = capacity;
+            capacity = ensure_capacity(ctx, std::min(max_nodes_, size_t(kHeadroom * double(late.peak)) + 1));
+            if (late.dropped && capacity > before)
+                std::fprintf(stderr, "%s: node buffer grown to %zu nodes (%.1f MiB)\n", ctx.pass_name().c_str(), capacity,
                              double(capacity * oit::kNodeBytes) / 1048576.0);
-            }
         }
         draw(ctx, capacity);
-        counts_->copy(ctx.buffer("counter").id, 0, capacity);
-        report(ctx, last_count_, capacity, events, dropped);
+        counts_->copy(ctx.buffer("counter").id, 0, capacity, ctx.frame_index());
+        ctx.stat("count_waits", double(counts_->waits()));  // copies that found the ring full (GpuReadback)
+        report(ctx, last_count_, capacity, late.events, late.dropped);
+    }
+
+    // The end of the run: the counts still in flight, waited for, so every lost frame is reported.
+    void finish(pathlet::PassContext& ctx) override {
+        Late late;
+        if (counts_) counts_->drain([&](const pathlet::GpuReadback::Result& r) { take_count(ctx, r, late); });
     }
 
 private:
+    struct Late {  // what the counts that arrived in one call said
+        GLuint peak = 0;
+        int events = 0;
+        size_t dropped = 0;
+    };
+
+    // One frame's count, a frame or more late: a frame with more fragments than nodes lost some.
+    void take_count(pathlet::PassContext& ctx, const pathlet::GpuReadback::Result& r, Late& late) {
+        const GLuint count = *static_cast<const GLuint*>(r.data);
+        const size_t had = size_t(r.tag);
+        last_count_ = count;
+        late.peak = std::max(late.peak, count);
+        if (count <= had) return;
+        const size_t dropped = count - had;
+        late.dropped += dropped;
+        ++late.events;
+        ++events_total_;
+        ctx.frame_incomplete(r.frame);
+        if (had >= max_nodes_)
+            report_cap(ctx, r.frame, dropped, count, had);
+        else
+            std::fprintf(stderr, "%s: node buffer overflow in frame %llu: %u fragments for %zu nodes, %zu lost\n",
+                         ctx.pass_name().c_str(), (unsigned long long)r.frame, count, had, dropped);
+    }
+
     // Grows the node buffer to hold `nodes` (never shrinks) and points the buffer texture at it.
     size_t ensure_capacity(pathlet::PassContext& ctx, size_t nodes) {
         pathlet::Buffer b = ctx.grow_buffer("nodes", nodes * oit::kNodeBytes);
@@ -137,7 +157,10 @@ private:
             count = draw_and_count(ctx, capacity);
         }
         const size_t dropped = count > capacity ? count - capacity : 0;
-        if (dropped) report_cap(ctx, dropped, count, capacity);
+        if (dropped) {
+            report_cap(ctx, ctx.frame_index(), dropped, count, capacity);
+            ctx.frame_incomplete(ctx.frame_index());
+        }
         last_count_ = count;
         report(ctx, count, capacity, events, dropped);
     }
@@ -149,11 +172,11 @@ private:
         return count;
     }
 
-    void report_cap(pathlet::PassContext& ctx, size_t dropped, GLuint count, size_t capacity) const {
+    void report_cap(pathlet::PassContext& ctx, uint64_t frame, size_t dropped, GLuint count, size_t capacity) const {
         std::fprintf(stderr,
                      "%s: frame %llu DROPS %zu of %u fragments: the node buffer is at its cap (%zu nodes, "
-                     "max_memory_mb = %.0f); raise max_memory_mb or shorten the window\n",
-                     ctx.pass_name().c_str(), (unsigned long long)ctx.frame_index(), dropped, count, capacity,
+                     "max_memory_mb = %g); raise max_memory_mb or shorten the window\n",
+                     ctx.pass_name().c_str(), (unsigned long long)frame, dropped, count, capacity,
                      ctx.params().f("max_memory_mb"));
     }
 
@@ -200,8 +223,8 @@ private:
     lines::GBufferTargets gbuffer_;  // the bound G-buffer colour targets (only with 'depth')
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
-    std::unique_ptr<pathlet::GpuReadback> counts_;          // later frames' counts, without waiting
-    GLuint last_count_ = 0;                                 // the newest count known
+    std::unique_ptr<pathlet::GpuReadback> counts_;  // later frames' counts, without waiting
+    GLuint last_count_ = 0;                         // the newest count known
 };
 
 pathlet::PassTypeInfo fill_list_type() {

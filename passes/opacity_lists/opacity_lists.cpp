@@ -11,9 +11,12 @@
 // less; a fragment faded out is no node). Or, with importance=hook, the colour hook's opacity
 // alone, every fragment kept as an occluder: importance as a GLSL function of LinePoint.
 //
-// Nothing is read back in the frame: the node counter of a frame is copied aside with a fence
-// and read when the fence has passed (the next frame on llvmpipe); a frame that overflowed grows
-// the node buffer for the frames after it and is reported (stats, stderr).
+// Nothing is read back in the frame: the node counter of every frame is copied aside with a
+// fence (pathlet::GpuReadback) and read, every count in order, when the GPU is done (the next
+// frame on llvmpipe, a few later in bursts on a GPU). As fill_list, the lists grow ahead when a
+// frame used more than kGrowAt of them, to kHeadroom x that count; a frame that still overflowed
+// lost fragments: it is reported (stats, stderr, PassContext::frame_incomplete) and the lists
+// grow for the frames after it. finish() waits for the counts in flight at the end of a run.
 #include "segmentation.hpp"
 
 #include <pathlet/gpu_readback.hpp>
@@ -122,23 +125,17 @@ public:
         if (max_nodes == 0)
             throw std::runtime_error("max_memory_mb (or GL_MAX_SHADER_STORAGE_BLOCK_SIZE) leaves no room for nodes at " +
                                      std::to_string(size.x) + "x" + std::to_string(size.y));
-        // An earlier frame's count, once the GPU is done with it (never waited for), tagged with
-        // that frame's capacity: grow for this frame when it overflowed.
+        max_nodes_ = max_nodes;
+        // Every earlier frame's count the GPU is done with (never waited for), in order, tagged with
+        // that frame's capacity: grow ahead for this frame, and report the frames that overflowed.
         double dropped = -1;
-        if (const void* counted = counts_->poll()) {
-            const GLuint count = *static_cast<const GLuint*>(counted);
-            const size_t had = size_t(counts_->latest_tag());
-            dropped = count > had ? double(count - had) : 0.0;
-            if (count > had && had < max_nodes) {
-                ++events_;
-                wanted_ = std::max(wanted_, size_t(double(count) * 1.25) + 1);
-                std::fprintf(stderr, "%s: node buffer overflow: %u fragments for %zu nodes at %dx%d; grown to %zu nodes\n",
-                             ctx.pass_name().c_str(), count, had, size.x, size.y, std::min(wanted_, max_nodes));
-            } else if (count > had) {
-                std::fprintf(stderr, "%s: a frame dropped %zu of %u fragments: the node buffer is at its cap (max_memory_mb)\n",
-                             ctx.pass_name().c_str(), size_t(count - had), count);
-            }
-        }
+        GLuint peak = 0;
+        counts_->poll([&](const pathlet::GpuReadback::Result& r) {
+            const GLuint count = *static_cast<const GLuint*>(r.data);
+            peak = std::max(peak, count);
+            dropped = take_count(ctx, r, max_nodes);  // the newest frame's, for the stat
+        });
+        if (double(peak) > kGrowAt * double(capacity_)) wanted_ = std::max(wanted_, size_t(kHeadroom * double(peak)) + 1);
         const size_t by_pixels = size_t(std::ceil(p.f("nodes_per_pixel") * double(pixels)));
         capacity_ = std::min(max_nodes, std::max({by_pixels, wanted_, size_t(1)}));
         const pathlet::Buffer lists = ctx.grow_buffer("lists", 4 * list_words(size, capacity_));
@@ -166,7 +163,7 @@ public:
         prog_->use();  // lists and source on their bindings by declaration
         drawer_.draw(ctx, *prog_);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        counts_->copy(lists.id, 4 * kCountWord, capacity_);
+        counts_->copy(lists.id, 4 * kCountWord, capacity_, ctx.frame_index());
 
         ctx.stat("segments_total", double(segments_));
         ctx.stat("list_width", size.x);
@@ -174,17 +171,46 @@ public:
         ctx.stat("capacity_nodes", double(capacity_));
         ctx.stat("node_memory_mib", double(lists.bytes) / 1048576.0);
         ctx.stat("overflow_events_total", double(events_));
-        if (dropped >= 0) ctx.stat("dropped_fragments_last_frame", dropped);
+        if (dropped >= 0) ctx.stat("dropped_fragments_last_frame", dropped);  // of the counts that arrived
+        ctx.stat("count_waits", double(counts_->waits()));  // copies that found the ring full (GpuReadback)
         ctx.stat("importance_min", range_.x);
         ctx.stat("importance_max", range_.y);
     }
 
+    // The end of the run: the counts still in flight, waited for, so every lost frame is reported.
+    void finish(pathlet::PassContext& ctx) override {
+        if (counts_) counts_->drain([&](const pathlet::GpuReadback::Result& r) { take_count(ctx, r, max_nodes_); });
+    }
+
 private:
+    static constexpr double kGrowAt = 0.75, kHeadroom = 1.5;  // fill_list's grow-ahead
+
+    // One frame's count, tagged with its capacity: the fragments it lost (0 when it fit).
+    double take_count(pathlet::PassContext& ctx, const pathlet::GpuReadback::Result& r, size_t max_nodes) {
+        const GLuint count = *static_cast<const GLuint*>(r.data);
+        const size_t had = size_t(r.tag);
+        if (count <= had) return 0.0;
+        ++events_;
+        ctx.frame_incomplete(r.frame);
+        if (had < max_nodes) {
+            wanted_ = std::max(wanted_, size_t(double(count) * kHeadroom) + 1);
+            std::fprintf(stderr, "%s: node buffer overflow in frame %llu: %u fragments for %zu nodes, %zu lost; growing to %zu nodes\n",
+                         ctx.pass_name().c_str(), (unsigned long long)r.frame, count, had, size_t(count - had),
+                         std::min(wanted_, max_nodes));
+        } else {
+            std::fprintf(stderr, "%s: frame %llu DROPS %zu of %u fragments: the lists are at their cap (max_memory_mb = %g)\n",
+                         ctx.pass_name().c_str(), (unsigned long long)r.frame, size_t(count - had), count,
+                         double(ctx.params().f("max_memory_mb")));
+        }
+        return double(count - had);
+    }
+
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
     GLuint fbo_ = 0;
     std::unique_ptr<pathlet::GpuReadback> counts_;  // the lists' node counts, a frame or more late
     size_t segments_bytes_ = 0, segments_ = 0, capacity_ = 0, wanted_ = 0, max_bytes_ = 0;
+    size_t max_nodes_ = 0;  // the last frame's (finish() has no frame)
     long long events_ = 0;
     glm::vec2 range_{0.0f, 1.0f};
 };

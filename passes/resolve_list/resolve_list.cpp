@@ -87,7 +87,7 @@ public:
         // on a GPU): the frame loop never waits for them.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         if (!stats_) stats_ = std::make_unique<pathlet::GpuReadback>(sizeof stats_seen_);
-        if (const void* p = stats_->poll()) std::memcpy(stats_seen_, p, sizeof stats_seen_);
+        if (const void* p = stats_->poll_newest()) std::memcpy(stats_seen_, p, sizeof stats_seen_);
         stats_->copy(stats, 0);
         ctx.stat("peak_nodes_per_pixel", double(stats_seen_[0]));
         ctx.stat("truncated_pixels", double(stats_seen_[1]));

@@ -174,6 +174,8 @@ int run(const std::vector<std::string>& argv) {
                          {"output_s", r.output_s}, {"output_drain_s", r.output_drain_s}};
             write_reports(r, report, meta);
         }
+        // Last: a frame a pass could not draw whole is written anyway, and said here (exit 0).
+        if (const std::string line = incomplete_frames_line(r); !line.empty()) std::fprintf(stderr, "%s\n", line.c_str());
         return 0;
     } catch (const GraphError& e) {
         return report_graph_error(e, rt);

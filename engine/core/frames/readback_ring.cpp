@@ -45,7 +45,7 @@ ReadbackRing::ReadbackRing(size_t depth) : depth_(depth < 1 ? 1 : depth) {}
 ReadbackRing::~ReadbackRing() {
     auto release = [](const Buffer& b) { glDeleteBuffers(1, &b.id); };
     for (Frame& f : frames_) {
-        glDeleteSync(f.fence);
+        f.fence.reset();
         for (Copy& c : f.copies) release(c.buffer);
     }
     for (Copy& c : open_.copies) release(c.buffer);
@@ -101,7 +101,7 @@ void ReadbackRing::copy(GLuint tex, int w, int h, GLenum format, GLenum type, in
 
 void ReadbackRing::end_frame() {
     if (open_.copies.empty()) return;
-    open_.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    open_.fence = GpuFence::insert();
     glFlush();  // the fence can signal without our next wait having to flush it
     frames_.push_back(std::move(open_));
     open_ = {};
@@ -110,8 +110,7 @@ void ReadbackRing::end_frame() {
 
 void ReadbackRing::poll() {
     while (!frames_.empty()) {
-        const GLenum s = glClientWaitSync(frames_.front().fence, 0, 0);
-        if (s != GL_ALREADY_SIGNALED && s != GL_CONDITION_SATISFIED) return;
+        if (!frames_.front().fence.signalled(false)) return;  // flushed in end_frame()
         take_oldest(false);
     }
 }
@@ -124,17 +123,15 @@ void ReadbackRing::drain() {
 void ReadbackRing::take_oldest(bool wait) {
     Frame f = std::move(frames_.front());
     frames_.pop_front();
-    if (wait)
-        for (;;) {  // one second at a time; a lost context would return GL_WAIT_FAILED
-            const GLenum s = glClientWaitSync(f.fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
-            if (s == GL_ALREADY_SIGNALED || s == GL_CONDITION_SATISFIED) break;
-            if (s == GL_WAIT_FAILED) {
-                glDeleteSync(f.fence);
-                for (Copy& c : f.copies) free_.push_back(c.buffer);
-                throw std::runtime_error("read-back: waiting for the GPU failed (glClientWaitSync)");
-            }
+    if (wait) {
+        try {
+            f.fence.wait();
+        } catch (const std::exception& e) {
+            for (Copy& c : f.copies) free_.push_back(c.buffer);
+            throw std::runtime_error(std::string("read-back: ") + e.what());
         }
-    glDeleteSync(f.fence);
+    }
+    f.fence.reset();
     take(f);
 }
 

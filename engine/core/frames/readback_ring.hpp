@@ -6,7 +6,7 @@
 // for every call, the destructor included.
 #pragma once
 
-#include <pathlet/gl.hpp>
+#include <pathlet/gpu_fence.hpp>
 
 #include <cstddef>
 #include <deque>
@@ -52,7 +52,7 @@ private:
     };
     struct Frame {
         std::vector<Copy> copies;
-        GLsync fence = nullptr;
+        GpuFence fence;  // checked through pathlet/gpu_fence.hpp (the simulated latency too)
     };
     Buffer take_buffer(size_t bytes);
     void take(Frame& f);  // maps, hands over, recycles the buffers

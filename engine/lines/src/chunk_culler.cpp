@@ -219,7 +219,7 @@ void ChunkCuller::draw_phase(const GpuScene& scene, int phase) const {
 void ChunkCuller::copy_counts() { counts_->copy(header_, kCountsOffset); }
 
 bool ChunkCuller::stats(Stats& out) {
-    const void* p = counts_ ? counts_->poll() : nullptr;
+    const void* p = counts_ ? counts_->poll_newest() : nullptr;
     if (!p) return false;
     Header h{};
     std::memcpy(reinterpret_cast<char*>(&h) + kCountsOffset, p, kCountsBytes);

@@ -245,9 +245,12 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
         // Only an opaque depth test hides anything: a pass that keeps every fragment (OIT's
         // depth ALWAYS, or occlusion culling switched off) gets the frustum test alone.
         if (occlusion_ && depth_func_ != GL_ALWAYS) f.depth = bound_depth(f.depth_size);
-        culler_->draw(ctx, prog, f);
+        // The newest counts the GPU has finished, asked before this frame's copy: polled right
+        // after it, the new fence would be flushed mid-pass (a submit, a cache flush on some GPUs).
         ChunkCuller::Stats cs;
-        if (culler_->stats(cs)) {  // the newest counts the GPU has finished, read without waiting
+        const bool counted = culler_->stats(cs);
+        culler_->draw(ctx, prog, f);
+        if (counted) {
             ctx.stat("chunks", cs.chunks);
             ctx.stat("chunks_frustum_culled", cs.frustum_culled);
             ctx.stat("chunks_phase1", cs.phase1);

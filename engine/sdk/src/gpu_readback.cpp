@@ -5,50 +5,115 @@
 
 namespace pathlet {
 
-GpuReadback::GpuReadback(size_t bytes, int slots)
+namespace {
+constexpr GLbitfield kMapFlags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+}
+
+GpuReadback::GpuReadback(size_t bytes, int slots, int max_slots)
     : bytes_(std::max<size_t>(bytes, 1)), stride_((std::max<size_t>(bytes, 1) + 15) / 16 * 16),
-      fence_(size_t(std::max(slots, 1)), nullptr), tag_(fence_.size(), 0) {
-    const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-    const GLsizeiptr size = GLsizeiptr(stride_ * fence_.size());
-    glCreateBuffers(1, &buffer_);
-    glNamedBufferStorage(buffer_, size, nullptr, flags);
-    mapped_ = static_cast<const unsigned char*>(glMapNamedBufferRange(buffer_, 0, size, flags));
+      per_block_(size_t(std::max(slots, 1))), max_slots_(std::max(size_t(std::max(max_slots, 1)), size_t(1))) {
+    per_block_ = std::min(per_block_, max_slots_);
+    grow();
 }
 
 GpuReadback::~GpuReadback() {
-    for (GLsync f : fence_)
-        if (f) glDeleteSync(f);
-    if (buffer_) {
-        glUnmapNamedBuffer(buffer_);
-        glDeleteBuffers(1, &buffer_);
+    pending_.clear();  // deletes the fences
+    for (const Block& b : blocks_) {
+        glUnmapNamedBuffer(b.buffer);
+        glDeleteBuffers(1, &b.buffer);
     }
 }
 
-bool GpuReadback::copy(GLuint buffer, size_t offset, uint64_t tag) {
-    if (fence_[size_t(next_)]) poll();  // frees the slot if its copy is done
-    if (fence_[size_t(next_)] || !mapped_) return false;
-    glCopyNamedBufferSubData(buffer, buffer_, GLintptr(offset), GLintptr(size_t(next_) * stride_), GLsizeiptr(bytes_));
-    fence_[size_t(next_)] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    tag_[size_t(next_)] = tag;
-    next_ = (next_ + 1) % int(fence_.size());
-    return true;
+void GpuReadback::grow() {
+    const size_t n = std::min(per_block_, max_slots_ - slot_count_);
+    Block b;
+    const GLsizeiptr size = GLsizeiptr(stride_ * per_block_);
+    glCreateBuffers(1, &b.buffer);
+    glNamedBufferStorage(b.buffer, size, nullptr, kMapFlags);
+    b.mapped = static_cast<const unsigned char*>(glMapNamedBufferRange(b.buffer, 0, size, kMapFlags));
+    blocks_.push_back(b);
+    // Lowest slot on top of the free list: slots are used in order while the GPU keeps up.
+    for (size_t i = n; i-- > 0;) free_.push_back(int(slot_count_ + i));
+    slot_count_ += n;
 }
 
-const void* GpuReadback::poll() {
+const unsigned char* GpuReadback::slot_bytes(int slot) const {
+    const Block& b = blocks_[size_t(slot) / per_block_];
+    return b.mapped ? b.mapped + (size_t(slot) % per_block_) * stride_ : nullptr;
+}
+
+void GpuReadback::copy(GLuint buffer, size_t offset, uint64_t tag, uint64_t frame) {
+    if (free_.empty() && slot_count_ < max_slots_) grow();
+    if (free_.empty()) {
+        // The GPU is max_slots copies behind: the oldest is waited for, not dropped.
+        for (Pending& p : pending_) {
+            if (p.slot < 0) continue;
+            p.fence.wait();
+            const unsigned char* src = slot_bytes(p.slot);
+            p.kept.assign(src, src + bytes_);
+            free_.push_back(p.slot);
+            p.slot = -1;
+            p.fence.reset();
+            ++waits_;
+            break;
+        }
+    }
+    const int slot = free_.back();
+    free_.pop_back();
+    const Block& b = blocks_[size_t(slot) / per_block_];
+    glCopyNamedBufferSubData(buffer, b.buffer, GLintptr(offset), GLintptr((size_t(slot) % per_block_) * stride_),
+                             GLsizeiptr(bytes_));
+    Pending p;
+    p.slot = slot;
+    p.fence = GpuFence::insert();
+    p.tag = tag;
+    p.frame = frame;
+    pending_.push_back(std::move(p));
+}
+
+void GpuReadback::hand_out(Pending& p, const Take& take) {
+    Result r;
+    r.tag = p.tag;
+    r.frame = p.frame;
+    r.data = p.slot < 0 ? p.kept.data() : slot_bytes(p.slot);
+    if (p.slot >= 0) free_.push_back(p.slot);  // before take(), which may throw; nothing copies meanwhile
+    if (r.data && take) take(r);
+}
+
+size_t GpuReadback::poll(const Take& take) {
+    size_t n = 0;
+    while (!pending_.empty()) {
+        Pending& p = pending_.front();
+        // The flush bit: a fence nothing has flushed yet would never signal.
+        if (p.slot >= 0 && !p.fence.signalled(true)) break;
+        Pending done = std::move(p);
+        pending_.pop_front();
+        hand_out(done, take);
+        ++n;
+    }
+    return n;
+}
+
+size_t GpuReadback::drain(const Take& take) {
+    size_t n = 0;
+    while (!pending_.empty()) {
+        Pending done = std::move(pending_.front());
+        pending_.pop_front();
+        if (done.slot >= 0) done.fence.wait();
+        hand_out(done, take);
+        ++n;
+    }
+    return n;
+}
+
+const void* GpuReadback::poll_newest() {
     bool got = false;
-    const int n = int(fence_.size());
-    for (int k = 0; k < n; ++k) {
-        const size_t slot = size_t((next_ + k) % n);  // oldest first
-        if (!fence_[slot]) continue;
-        // FLUSH: a fence nothing has flushed yet would never signal.
-        const GLenum r = glClientWaitSync(fence_[slot], GL_SYNC_FLUSH_COMMANDS_BIT, 0);
-        if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) break;
-        glDeleteSync(fence_[slot]);
-        fence_[slot] = nullptr;
-        latest_.assign(mapped_ + slot * stride_, mapped_ + slot * stride_ + bytes_);
-        latest_tag_ = tag_[slot];
+    poll([&](const Result& r) {
+        const auto* b = static_cast<const unsigned char*>(r.data);
+        latest_.assign(b, b + bytes_);
+        latest_tag_ = r.tag;
         got = true;
-    }
+    });
     return got ? latest_.data() : nullptr;
 }
 

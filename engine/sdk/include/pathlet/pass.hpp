@@ -316,6 +316,10 @@ public:
     const Camera& camera() const;
     // Statistics reported with the timing table (e.g. "segments drawn").
     void stat(const std::string& name, double value);
+    // Frame `frame` (its frame_index(), possibly an earlier frame's: a count read back late) lost
+    // part of its picture, e.g. fragments dropped on overflow. A run ends with the line
+    // "incomplete frames: N of M (...)" (render, bench, Python).
+    void frame_incomplete(uint64_t frame);
     // Fullscreen passes with a compute version (PassTypeBuilder::compute_version()):
     // The parameter `impl` resolved on this context's renderer (auto_impl for `auto`).
     bool use_compute() const;
@@ -358,6 +362,9 @@ public:
     virtual void setup(PassContext& ctx) {}
     // Every frame.
     virtual void execute(PassContext& ctx) = 0;
+    // Once at the end of a run (render, bench, Python), GL current: wait for what is still in
+    // flight that can tell of an incomplete frame (late counts) and report it.
+    virtual void finish(PassContext& ctx) {}
 };
 
 }  // namespace pathlet
