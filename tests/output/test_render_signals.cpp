@@ -4,7 +4,7 @@
 // signal. And a writer's error (a full disk) is a clear error naming the file, exit 1,
 // nothing half-written.
 #include "image_io.hpp"
-#include "video_writer.hpp"
+#include "../support/optional_tool.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -105,12 +106,22 @@ size_t pngs_in(const fs::path& dir) {
     return n;
 }
 
-// Every entry of `dir`: frames 00000.png, 00001.png, ... without a gap, each complete.
-void expect_complete_sequence(const fs::path& dir, size_t at_least) {
+// N of the command's last words "interrupted (SIGNAL): N frame(s) rendered and written"; -1
+// when it did not say them.
+long frames_said(const std::string& err) {
+    static const std::regex said(R"(interrupted \((SIGINT|SIGTERM)\): ([0-9]+) frame\(s\) rendered and written)");
+    std::smatch m;
+    return std::regex_search(err, m, said) ? std::stol(m[2]) : -1;
+}
+
+// Every entry of `dir`: frames 00000.png, 00001.png, ... without a gap, each complete, and
+// exactly the `frames` the command said it wrote (a stop that dropped queued frames leaves fewer).
+void expect_complete_sequence(const fs::path& dir, long frames) {
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
-    ASSERT_GE(names.size(), at_least);
+    ASSERT_GE(frames, 3) << "the signal came after three frames were on disk";
+    ASSERT_EQ(long(names.size()), frames) << "the files on disk are the frames the command says it wrote";
     for (size_t i = 0; i < names.size(); ++i) {
         char expected[16];
         std::snprintf(expected, sizeof expected, "%05zu.png", i);
@@ -122,8 +133,9 @@ void expect_complete_sequence(const fs::path& dir, size_t at_least) {
 }
 
 std::vector<std::string> render_args(const fs::path& out) {
-    // Far more frames than the test waits for: the signal always comes mid-run.
-    return {"render", "isl", "--data", kData, "--time", "0:1000:0.01", "--size", "160x120", "--warmup", "0",
+    // Far more frames than the test waits for (the signal always comes mid-run), all inside the
+    // data's 0..1 s.
+    return {"render", "isl", "--data", kData, "--time", "0:1:0.0001", "--size", "160x120", "--warmup", "0",
             "--out", out.string()};
 }
 
@@ -134,7 +146,7 @@ void stop_image_sequence(int sig, const std::string& name) {
     r.signal(sig);
     EXPECT_EQ(r.wait(), 128 + sig) << r.err();
     EXPECT_NE(r.err().find("interrupted (" + name + ")"), std::string::npos) << r.err();
-    expect_complete_sequence(dir / "out" / "isl", 3);
+    expect_complete_sequence(dir / "out" / "isl", frames_said(r.err()));
 }
 
 TEST(RenderSignals, SigintKeepsTheFinishedFramesAndNoTemp) { stop_image_sequence(SIGINT, "SIGINT"); }
@@ -149,7 +161,7 @@ bool video_started(const fs::path& dir) {
 }
 
 void stop_video(int sig, const std::string& name, bool images) {
-    if (!VideoWriter::available()) GTEST_SKIP() << "ffmpeg is not on PATH: --video is not tested";
+    PATHLET_REQUIRE_TOOLS("ffmpeg");
     const fs::path dir = scratch(std::string("video_") + name + (images ? "_images" : ""));
     std::vector<std::string> args = render_args(dir / "out");
     args.insert(args.end(), {"--video", (dir / "vid" / "clip.mp4").string()});
@@ -161,7 +173,7 @@ void stop_video(int sig, const std::string& name, bool images) {
     EXPECT_EQ(r.wait(), 128 + sig) << r.err();
     EXPECT_NE(r.err().find("the video was not written"), std::string::npos) << r.err();
     EXPECT_TRUE(fs::is_empty(dir / "vid")) << "neither the video nor its temp file stays";
-    if (images) expect_complete_sequence(dir / "out" / "isl", 3);
+    if (images) expect_complete_sequence(dir / "out" / "isl", frames_said(r.err()));
     else EXPECT_FALSE(fs::exists(dir / "out")) << "--no-images --video writes no image";
 }
 
@@ -169,7 +181,7 @@ TEST(RenderSignals, SigintAbandonsTheVideoAndLeavesNoTemp) { stop_video(SIGINT, 
 TEST(RenderSignals, SigtermAbandonsAVideoWithoutImages) { stop_video(SIGTERM, "SIGTERM", false); }
 
 TEST(RenderSignals, VideoWithoutImagesWritesEveryFrameAndNoPng) {
-    if (!VideoWriter::available()) GTEST_SKIP() << "ffmpeg is not on PATH: --video is not tested";
+    PATHLET_REQUIRE_TOOLS("ffmpeg ffprobe");
     const fs::path dir = scratch("video_only");
     Running r({"render", "isl", "--data", kData, "--time", "0:0.4", "--size", "160x120", "--quiet", "--no-images",
                "--out", (dir / "out").string(), "--video", (dir / "clip.mp4").string()},
@@ -180,12 +192,10 @@ TEST(RenderSignals, VideoWithoutImagesWritesEveryFrameAndNoPng) {
     for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"clip.mp4", "stderr.txt"}));
-    if (fs::exists("/usr/bin/ffprobe")) {
-        const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 '" +
-                                (dir / "clip.mp4").string() + "' > '" + (dir / "probe.txt").string() + "'";
-        ASSERT_EQ(std::system(cmd.c_str()), 0);
-        EXPECT_EQ(slurp(dir / "probe.txt"), "11\n") << "0:0.4 at 25 fps is 11 frames";
-    }
+    const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 '" +
+                            (dir / "clip.mp4").string() + "' > '" + (dir / "probe.txt").string() + "'";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    EXPECT_EQ(slurp(dir / "probe.txt"), "11\n") << "0:0.4 at 25 fps is 11 frames";
 }
 
 TEST(RenderSignals, AFullDiskIsAClearErrorNamingTheFileAndNothingHalfWritten) {
