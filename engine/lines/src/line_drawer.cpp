@@ -221,7 +221,7 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(depth_func_);  // LEQUAL: halos pushed past the far plane still land on the cleared 1.0
     glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
+    if (!blending_) glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);  // quads face either way
     const GpuScene& scene = ctx.scene();
     // Culling pays from cull_min_segments data segments in the window; below, the plain draw.

@@ -131,6 +131,9 @@ public:
     // Off: frustum culling only, with any depth test. For a pass whose depth-tested targets are
     // not all it writes (fill_list's lists beside its G-buffer: a hidden fragment is still a node).
     void set_occlusion_culling(bool on) { occlusion_ = on; }
+    // On: the blending the pass enabled stays on during the draw (blend-only OIT: WBOIT, MBOIT
+    // accumulate with additive or multiplicative blending); off (default): the draw disables it.
+    void set_blending(bool on) { blending_ = on; }
 
     // Segments the last unculled frame drew (after the level of detail); a culled frame's count
     // is on the GPU and reaches the pass's `segments` stat when the GPU is done.
@@ -143,6 +146,7 @@ private:
 
     GLenum depth_func_ = GL_LEQUAL;
     bool occlusion_ = true;
+    bool blending_ = false;
     GpuScene::Ranges ranges_;
     bool lod_on_ = false, width_hooked_ = false;
     struct {
@@ -184,6 +188,12 @@ constexpr size_t kDensityHeaderBytes = 48;
 std::vector<std::string> density_defines(const PassContext& ctx);
 // Parameters of the AO estimate, declared once: reach (line widths), ao_scale, directions, steps.
 PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b);
+// Per-fragment AO of an opaque core (graphs/variant2_*_ao.json) in a blend-only OIT pass: the
+// optional inputs `ao` (bilateral's ao_smooth) and `core` (fade_core's normal_depth) and the
+// parameter ao_tolerance, for a fragment stage that includes shaders/oit_blend.glsl.
+PassTypeBuilder& declare_core_ao_inputs(PassTypeBuilder& b);
+// {"CORE_AO"} when both inputs are connected, {} when neither; throws when only one is.
+std::vector<std::string> core_ao_defines(const PassContext& ctx);
 // What a pass that evaluates line_volume_ao.glsl keeps: the cells as a 3D texture.
 class VolumeAo {
 public:

@@ -1,0 +1,22 @@
+#version 450 core
+// mboit_moments' fragment stage: the fragment's absorbance -ln(1 - alpha) and its power moments
+// of the warped depth (oit_blend.glsl's oit_log_depth), added into the pixel's sums.
+#define LINE_STAGE_FRAGMENT
+#include "line_common.glsl"
+#include "oit_blend.glsl"
+#include "mboit_common.glsl"
+
+vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_hook)
+
+layout(location = 0) out vec4 o_b0;
+layout(location = 1) out vec4 o_moments;
+
+void main() {
+    LineFrag f = line_fragment();
+    vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
+    if (c.a < kOitMinAlpha) discard;  // invisible: no contribution (and no coverage)
+    float a = mboit_absorbance_of(c.a);
+    float z = oit_log_depth(f), z2 = z * z, z4 = z2 * z2;
+    o_b0 = vec4(a);
+    o_moments = a * vec4(z, z2, z2 * z, z4);
+}
