@@ -1,4 +1,5 @@
 #include "chunk_culler.hpp"
+#include "cull_scan.hpp"
 #include "saved_bindings.hpp"
 
 #include <algorithm>
@@ -15,20 +16,12 @@ namespace {
 enum Binding : GLuint { kChunks, kLod, kPositions, kLines, kState, kSlots, kIndices, kHeader, kBindings };
 constexpr GLuint kTextureUnit = 0, kImageUnit = 0;  // the pyramid's sampler and image (saved, restored)
 constexpr int kGroup = 64;          // invocations a work group (one a chunk)
-constexpr int kScanThreads = 256;   // the scan's one work group
 constexpr int kTile = 4;            // pixels a side of a pyramid level-0 texel (8: 17 % more segments drawn)
 constexpr int kTestTexels = 128;     // texels the depth test of a chunk reads at most
 constexpr uint32_t kSlot = LineChunks::kSegments + 1;  // strip points a chunk's slot holds (see line_cull_chunks.comp)
 constexpr size_t kStateBytes = 32;  // CullState in line_cull.glsl (checked against GL at first use)
 
-// The header buffer: the two phases' DrawElementsIndirectCommands, then the frame's counts.
-struct Header {
-    uint32_t cmd[2][5];
-    uint32_t segments[2];
-    uint32_t chunks, outside;
-    uint32_t drawn[2];
-    uint32_t occluded;
-};
+using Header = CullHeader;  // cull_scan.hpp: the draw commands, the counts, the scan's scratch
 constexpr size_t kCountsOffset = offsetof(Header, segments);
 constexpr size_t kCountsBytes = sizeof(Header) - kCountsOffset;
 
@@ -55,7 +48,8 @@ void check_state_layout(const ShaderProgram& prog) {
 size_t culling_bytes(size_t chunks, size_t segments) { return chunks * (kStateBytes + kSlot * 4) + segments * 2 * 4; }
 
 const std::vector<std::string>& ChunkCuller::defines() {
-    static const std::vector<std::string> d{def("CULL_CHUNKS_BINDING", kChunks),
+    static const std::vector<std::string> d = [] {
+        std::vector<std::string> v{def("CULL_CHUNKS_BINDING", kChunks),
             def("CULL_LOD_BINDING", kLod),
             def("CULL_POSITIONS_BINDING", kPositions),
             def("CULL_LINES_BINDING", kLines),
@@ -64,7 +58,6 @@ const std::vector<std::string>& ChunkCuller::defines() {
             def("CULL_INDICES_BINDING", kIndices),
             def("CULL_HEADER_BINDING", kHeader),
             def("CULL_GROUP", kGroup),
-            def("CULL_SCAN_THREADS", kScanThreads),
             def("CULL_TILE", kTile),
             def("CULL_TEST_TEXELS", kTestTexels),
             def("CULL_SLOT", kSlot),
@@ -74,6 +67,9 @@ const std::vector<std::string>& ChunkCuller::defines() {
             def("CULL_H_OUTSIDE", offsetof(Header, outside) / 4),
             def("CULL_H_DRAWN", offsetof(Header, drawn) / 4),
             def("CULL_H_OCCLUDED", offsetof(Header, occluded) / 4)};
+        for (std::string& x : CullScan::defines()) v.push_back(std::move(x));
+        return v;
+    }();
     return d;
 }
 
@@ -87,8 +83,8 @@ void ChunkCuller::allocate(const GpuScene& scene) {
     const std::vector<LineChunks::Chunk>& chunks = scene.chunks().chunks();
     const size_t segments = scene.chunks().segments();
     if (&scene == scene_ && chunks.size() == chunks_ && segments == segments_ && state_) return;
-    GLuint old[] = {state_, slots_, indices_};
-    glDeleteBuffers(3, old);
+    GLuint old[] = {state_, slots_, indices_, header_};
+    glDeleteBuffers(4, old);
     scene_ = &scene;
     chunks_ = chunks.size();
     segments_ = segments;
@@ -102,12 +98,12 @@ void ChunkCuller::allocate(const GpuScene& scene) {
     glNamedBufferStorage(slots_, GLsizeiptr(std::max<size_t>(chunks_ * kSlot * 4, 4)), nullptr, 0);
     glCreateBuffers(1, &indices_);
     glNamedBufferStorage(indices_, GLsizeiptr(std::max<size_t>(segments_ * 2 * 4, 4)), nullptr, 0);
-    if (!header_) {
-        const Header h{};
-        glCreateBuffers(1, &header_);
-        glNamedBufferStorage(header_, sizeof(Header), &h, 0);
-        counts_ = std::make_unique<GpuReadback>(kCountsBytes);
-    }
+    // The header's scratch grows with the chunks (the scan's block sums); copies in flight
+    // from the old one are safe (GL deletes it once they are done).
+    const std::vector<uint8_t> header(CullScan::header_bytes(chunks_), 0);
+    glCreateBuffers(1, &header_);
+    glNamedBufferStorage(header_, GLsizeiptr(header.size()), header.data(), 0);
+    if (!counts_) counts_ = std::make_unique<GpuReadback>(kCountsBytes);
     fresh_ = true;
 }
 
@@ -146,12 +142,7 @@ void ChunkCuller::bind_buffers(const GpuScene& scene) const {
 
 void ChunkCuller::scan_and_emit(PassContext& ctx, uint32_t chunks, int phase) {
     const std::vector<std::string>& d = defines();
-    ShaderProgram& scan = ctx.program({"line_cull_scan.comp"}, d);
-    scan.use();
-    set_uint(scan, "u_cull_chunks", chunks);
-    scan.set("u_cull_phase", phase);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    CullScan::run(ctx.program({"line_cull_scan.comp"}, d), header_, chunks, phase);
     ShaderProgram& emit = ctx.program({"line_cull_emit.comp"}, d);
     emit.use();
     set_uint(emit, "u_cull_chunks", chunks);
