@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 
@@ -109,6 +110,20 @@ TEST(Transparency, AFrozenViewOfThePhantomConvergesAndStaysStill) {
     ASSERT_EQ(r.max_alpha_change_per_frame.size(), 59u);
     EXPECT_LT(r.max_alpha_change_per_frame.back(), 1e-4);
     EXPECT_GT(r.fragments, 10000u);
+}
+
+// The alpha change bounded below too (a measure that always said 0 passes every bound above):
+// the phantom's pathlets move on, so each frame's opacities differ from the last's.
+TEST(Transparency, AnAnimatedViewChangesItsOpacitiesEveryFrame) {
+    const TransparencyResult r = measure("variant4_opacity", {}, small_phantom_scene(), "2:2.2");
+    ASSERT_EQ(r.frames, 6u);
+    ASSERT_EQ(r.max_alpha_change_per_frame.size(), 5u);
+    for (double d : r.max_alpha_change_per_frame) EXPECT_GT(d, 1e-2) << "a frame whose opacities did not change";
+    EXPECT_GT(r.alpha_change_mean, 1e-3);
+    EXPECT_GE(r.alpha_change_p95, r.alpha_change_mean) << "a few segments change much, most little";
+    EXPECT_DOUBLE_EQ(r.alpha_change_max, *std::max_element(r.max_alpha_change_per_frame.begin(), r.max_alpha_change_per_frame.end()))
+        << "the run's largest change is its largest frame's";
+    EXPECT_LE(r.alpha_change_max, 1.0);
 }
 
 TEST(Transparency, AGraphWithoutOitIsNotMeasured) {
