@@ -113,7 +113,9 @@ public:
             prog_->bind_texture("u_points", ctx.scene().points_texture());
             glDispatchCompute(GLuint((starts_.size() + 63) / 64), 1, 1);
         }
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+        // Buffer update: the next rebuild's header write and clear (glNamedBufferSubData,
+        // glClearNamedBufferSubData) must follow these atomics, whichever pass reads in between.
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         ctx.stat("segments", double(starts_.size()));
         ctx.stat("voxels", double(voxels_));
         ctx.stat("volume_mib", double(bytes_for(voxels_)) / 1048576.0);

@@ -3,6 +3,7 @@
 #include "formats.hpp"
 #include "frames/byte_readback.hpp"
 #include "frames/file_complete.hpp"
+#include "frames/native_readback.hpp"
 #include "util/atomic_file.hpp"
 
 #include <algorithm>
@@ -51,29 +52,48 @@ AsyncOutput::~AsyncOutput() {
 
 AsyncOutput::Plan AsyncOutput::plan_for(const Capture& c) {
     const GLenum f = c.tex.internal_format;
+    const FormatInfo* fi = find_format(f);
+    // Asked here, not of GL after the copy: a glGetError a frame is a round trip to a threaded driver.
+    if (fi && (fi->is_integer || (fi->depth && !is_depth(f))))
+        throw std::runtime_error(c.what + ": cannot read the texture back: " + fi->name +
+                                 " is not a colour or depth format an image holds");
     Plan p;
     if (is_depth(f)) {
         p.layout = RawFrame::Layout::Depth;
         p.factor = opt_.ssaa;
-    } else if (opt_.ssaa > 1) {
+        p.format = GL_DEPTH_COMPONENT;
+        if (depth_copy_.exact(f)) p.depth_copy = true, p.format = GL_RED;  // R32F on the GPU
+        return p;
+    }
+    NativeRead native;
+    const bool own_format = native_read(f, native) && widening_exact(f);
+    if (opt_.ssaa > 1) {
+        p.factor = opt_.ssaa;
         if (is_filterable(f) && filter_.exact(f, opt_.ssaa)) {
             p.layout = RawFrame::Layout::Sums;
-        } else {  // the full size read back, the CPU filters it on a writer
-            if (!opt_.quiet && !noted_cpu_filter_ && is_filterable(f)) {
-                const FormatInfo* fi = find_format(f);
-                std::fprintf(stderr, "note: %s (%s): supersampling resolved on the CPU (this driver's GPU filter differs from it)\n",
-                             c.what.c_str(), fi ? fi->name : "?");
-                noted_cpu_filter_ = true;
-            }
+            return p;
         }
-        p.factor = opt_.ssaa;
+        // The full size read back, the CPU filters it on a writer.
+        if (!opt_.quiet && !noted_cpu_filter_ && is_filterable(f)) {
+            std::fprintf(stderr, "note: %s (%s): supersampling resolved on the CPU (this driver's GPU filter differs from it)\n",
+                         c.what.c_str(), fi ? fi->name : "?");
+            noted_cpu_filter_ = true;
+        }
     } else {
         auto it = tables_.find(f);
         if (it == tables_.end()) it = tables_.emplace(f, measure_byte_table(f)).first;
         if (it->second) {
             p.layout = RawFrame::Layout::Bytes;
             p.table = it->second;
+            p.type = GL_UNSIGNED_BYTE;
+            return p;
         }
+    }
+    if (own_format) {  // r16f: 2 bytes a pixel, widened on a writer
+        p.format = native.format;
+        p.type = native.type;
+        p.channels = native.channels;
+        p.half = native.half;
     }
     return p;
 }
@@ -91,28 +111,29 @@ void AsyncOutput::capture(const std::vector<Capture>& captures) {
     ++frames_captured_;
     for (size_t i = 0; i < captures.size(); ++i) {
         const Capture& c = captures[i];
-        const Plan p = plan_for(c);
+        auto pit = plans_.find(c.tex.internal_format);  // measured once per format
+        if (pit == plans_.end()) pit = plans_.emplace(c.tex.internal_format, plan_for(c)).first;
+        const Plan& p = pit->second;
+        RawFrame raw;  // all but the bytes, which the ring hands over
+        raw.layout = p.layout;
+        raw.factor = p.factor;
+        raw.table = p.table;
+        raw.channels = p.channels;
+        raw.half = p.half;
+        raw.width = c.tex.width;
+        raw.height = c.tex.height;
         GLuint src = c.tex.id;
-        int w = c.tex.width, h = c.tex.height;
-        GLenum format = GL_RGBA, type = GL_FLOAT;
         if (p.layout == RawFrame::Layout::Sums) {
-            w /= opt_.ssaa;
-            h /= opt_.ssaa;
-            src = filter_.sums(c.tex.id, w, h, opt_.ssaa, i);
-        } else if (p.layout == RawFrame::Layout::Depth) {
-            format = GL_DEPTH_COMPONENT;
-        } else if (p.layout == RawFrame::Layout::Bytes) {
-            type = GL_UNSIGNED_BYTE;
+            raw.width /= opt_.ssaa;
+            raw.height /= opt_.ssaa;
+            src = filter_.sums(c.tex.id, raw.width, raw.height, opt_.ssaa, i);
+        } else if (p.depth_copy) {
+            src = depth_copy_.to_float(c.tex.id, c.tex.internal_format, raw.width, raw.height, i);
         }
         const bool last = i + 1 == captures.size();
-        ring_.copy(src, w, h, format, type, RawFrame::bytes_per_pixel(p.layout),
-                   [this, c, p, w, h, last](std::vector<float>&& data) {
-                       RawFrame raw;
-                       raw.layout = p.layout;
-                       raw.factor = p.factor;
-                       raw.table = p.table;
-                       raw.width = w;
-                       raw.height = h;
+        const int w = raw.width, h = raw.height, bpp = raw.bytes_per_pixel();
+        ring_.copy(src, w, h, p.format, p.type, bpp,
+                   [this, c, raw = std::move(raw), last](PackedPixels&& data) mutable {
                        raw.data = std::move(data);
                        submit(std::move(raw), c, last);
                    },

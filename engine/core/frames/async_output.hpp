@@ -12,6 +12,7 @@
 #pragma once
 
 #include "frames/gpu_box_filter.hpp"
+#include "frames/gpu_depth_copy.hpp"
 #include "frames/ordered_jobs.hpp"
 #include "frames/raw_frame.hpp"
 #include "frames/readback_ring.hpp"
@@ -60,12 +61,18 @@ public:
     size_t frames_written() const { return frames_written_.load(); }  // every capture committed
     int threads() const { return jobs_.threads(); }
     size_t max_queued() const { return jobs_.capacity(); }
+    uint64_t bytes_read_back() const { return ring_.bytes_copied(); }  // into pack buffers, so far
 
 private:
+    // How a format is read back: the layout, glGetTextureImage's format and type, the GPU's
+    // work before it (the box filter's sums, depth as R32F).
     struct Plan {
         RawFrame::Layout layout = RawFrame::Layout::Floats;
         int factor = 1;
         std::shared_ptr<const ByteTable> table;
+        GLenum format = GL_RGBA, type = GL_FLOAT;
+        int channels = 4;
+        bool half = false, depth_copy = false;
     };
     Plan plan_for(const Capture& c);
     void submit(RawFrame&& raw, const Capture& c, bool last_of_frame);
@@ -75,7 +82,9 @@ private:
     OrderedJobs jobs_;
     ReadbackRing ring_;
     GpuBoxFilter filter_;
+    GpuDepthCopy depth_copy_;
     std::map<GLenum, std::shared_ptr<const ByteTable>> tables_;  // nullptr: not read as bytes
+    std::map<GLenum, Plan> plans_;                               // by internal format
     std::map<std::string, std::string> staging_;  // output folder -> its temp folder
     size_t frames_captured_ = 0;
     uint64_t job_seq_ = 0;

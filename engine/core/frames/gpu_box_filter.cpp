@@ -1,5 +1,6 @@
 #include "frames/gpu_box_filter.hpp"
 
+#include "frames/output_program.hpp"
 #include "frames/raw_frame.hpp"
 #include "image_io.hpp"
 #include "pixel_store.hpp"
@@ -12,13 +13,6 @@
 namespace pathlet {
 
 namespace {
-
-constexpr const char* kVertex = R"(#version 450 core
-void main() {  // one triangle over the viewport
-    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
-    gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
 
 // box_downsample's loops: image rows top-down (GL rows from the block's top), columns left to
 // right, colour weighted by alpha, alpha, the plain colour; `precise` keeps each multiply and
@@ -43,21 +37,6 @@ void main() {
 }
 )";
 
-GLuint compile(GLenum stage, const char* src) {
-    GLuint s = glCreateShader(stage);
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        glDeleteShader(s);
-        throw std::runtime_error(std::string("GPU box filter: shader does not compile: ") + log);
-    }
-    return s;
-}
-
 }  // namespace
 
 GpuBoxFilter::~GpuBoxFilter() {
@@ -71,22 +50,7 @@ GpuBoxFilter::~GpuBoxFilter() {
 
 void GpuBoxFilter::ensure_program() {
     if (program_) return;
-    const GLuint vs = compile(GL_VERTEX_SHADER, kVertex), fs = compile(GL_FRAGMENT_SHADER, kFragment);
-    program_ = glCreateProgram();
-    glAttachShader(program_, vs);
-    glAttachShader(program_, fs);
-    glLinkProgram(program_);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-        glDeleteProgram(program_);
-        program_ = 0;
-        throw std::runtime_error(std::string("GPU box filter: program does not link: ") + log);
-    }
+    program_ = link_output_program(kFragment, "GPU box filter");
     factor_loc_ = glGetUniformLocation(program_, "u_factor");
     glCreateVertexArrays(1, &vao_);
 }
@@ -107,25 +71,8 @@ GLuint GpuBoxFilter::sums(GLuint src, int w, int h, int factor, size_t slot) {
         t.w = w;
         t.h = h;
     }
-    // State a pass may have left that would change what lands in the target; the executor
-    // sets its documented state before every pass, so nothing needs restoring but bindings.
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_STENCIL_TEST);
-    glDisable(GL_CULL_FACE);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
-    glViewport(0, 0, w, h);
-    glUseProgram(program_);
-    glUniform1i(factor_loc_, factor);
-    glBindTextureUnit(0, src);
-    glBindVertexArray(vao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    glBindTextureUnit(0, 0);
-    glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glProgramUniform1i(program_, factor_loc_, factor);
+    draw_output_program(program_, vao_, t.fbo, w, h, src);
     return t.tex;
 }
 

@@ -1,6 +1,7 @@
 #include "frames/readback_ring.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -8,33 +9,21 @@ namespace pathlet {
 
 namespace {
 
-// Pack state set by a pass (a bound pack buffer, row length) would redirect or skew the copy:
-// plain settings while we copy, theirs back afterwards.
-class PackState {
-public:
-    explicit PackState(GLuint buffer) {
-        glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &buffer_);
-        glGetIntegerv(GL_PACK_ALIGNMENT, &alignment_);
-        glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length_);
-        glGetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows_);
-        glGetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels_);
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-        glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
-    }
-    ~PackState() {
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(buffer_));
-        glPixelStorei(GL_PACK_ALIGNMENT, alignment_);
-        glPixelStorei(GL_PACK_ROW_LENGTH, row_length_);
-        glPixelStorei(GL_PACK_SKIP_ROWS, skip_rows_);
-        glPixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels_);
-    }
+// Pack state a pass set (a bound pack buffer, a row length; passes need not restore it) would
+// redirect or skew the copy: set, not asked (a glGet is a round trip to a threaded driver), and
+// GL's defaults left behind.
+void plain_pack_state(GLuint buffer) {
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+}
 
-private:
-    GLint buffer_ = 0, alignment_ = 4, row_length_ = 0, skip_rows_ = 0, skip_pixels_ = 0;
-};
+bool gl_debug() {
+    static const bool on = std::getenv("PATHLET_GL_DEBUG") != nullptr;
+    return on;
+}
 
 size_t row_bytes(int w, int bytes_per_pixel) { return (size_t(w) * size_t(bytes_per_pixel) + 3) / 4 * 4; }
 
@@ -43,7 +32,7 @@ size_t row_bytes(int w, int bytes_per_pixel) { return (size_t(w) * size_t(bytes_
 ReadbackRing::ReadbackRing(size_t depth) : depth_(depth < 1 ? 1 : depth) {}
 
 ReadbackRing::~ReadbackRing() {
-    auto release = [](const Buffer& b) { glDeleteBuffers(1, &b.id); };
+    auto release = [](const Buffer& b) { glDeleteBuffers(1, &b.id); };  // unmaps it
     for (Frame& f : frames_) {
         f.fence.reset();
         for (Copy& c : f.copies) release(c.buffer);
@@ -59,10 +48,13 @@ size_t ReadbackRing::busy_buffers() const {
 }
 
 ReadbackRing::Buffer ReadbackRing::take_buffer(size_t bytes) {
-    // Sizes repeat frame after frame: the smallest free buffer that fits.
+    // Sizes repeat frame after frame: the smallest free buffer that fits, once its last reader
+    // (a writer widening the pixels straight out of it) is done.
     size_t best = free_.size();
     for (size_t i = 0; i < free_.size(); ++i)
-        if (free_[i].size >= bytes && (best == free_.size() || free_[i].size < free_[best].size)) best = i;
+        if (free_[i].size >= bytes && !free_[i].lease->in_use.load(std::memory_order_acquire) &&
+            (best == free_.size() || free_[i].size < free_[best].size))
+            best = i;
     if (best < free_.size()) {
         Buffer b = free_[best];
         free_.erase(free_.begin() + long(best));
@@ -71,8 +63,16 @@ ReadbackRing::Buffer ReadbackRing::take_buffer(size_t bytes) {
     Buffer b;
     b.size = bytes;
     glCreateBuffers(1, &b.id);
-    // Read by the CPU only: client storage asks for memory the CPU reads fast.
-    glNamedBufferStorage(b.id, GLsizeiptr(bytes), nullptr, GL_MAP_READ_BIT | GL_CLIENT_STORAGE_BIT);
+    // Read by the CPU only: client storage asks for memory the CPU reads fast. Mapped once, for
+    // good: coherent, so what the GPU wrote is there once the frame's fence has signalled.
+    const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    glNamedBufferStorage(b.id, GLsizeiptr(bytes), nullptr, access | GL_CLIENT_STORAGE_BIT);
+    b.mapped = static_cast<const uint8_t*>(glMapNamedBufferRange(b.id, 0, GLsizeiptr(bytes), access));
+    if (!b.mapped) {
+        glDeleteBuffers(1, &b.id);
+        throw std::runtime_error("read-back: cannot map a pixel-pack buffer");
+    }
+    b.lease = std::make_shared<Lease>();
     return b;
 }
 
@@ -83,19 +83,22 @@ void ReadbackRing::copy(GLuint tex, int w, int h, GLenum format, GLenum type, in
     c.buffer = take_buffer(bytes);
     c.bytes = bytes;
     c.done = std::move(done);
+    // Errors are the debug callback's (the executor names them); a glGetError here would be a
+    // round trip to a threaded driver every copy, so it is asked only with PATHLET_GL_DEBUG.
     GLenum err = GL_NO_ERROR;
-    {
-        PackState pack(c.buffer.id);
+    if (gl_debug())
         while (glGetError() != GL_NO_ERROR) {}  // earlier errors are not ours (KHR_debug reports them)
-        glGetTextureImage(tex, 0, format, type, GLsizei(bytes), nullptr);
-        err = glGetError();
-    }
+    plain_pack_state(c.buffer.id);
+    glGetTextureImage(tex, 0, format, type, GLsizei(bytes), nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    if (gl_debug()) err = glGetError();
     if (err != GL_NO_ERROR) {
         free_.push_back(c.buffer);
         char code[16];
         std::snprintf(code, sizeof code, "0x%04x", unsigned(err));
         throw std::runtime_error(what + ": cannot read the texture back (glGetTextureImage: GL error " + code + ")");
     }
+    bytes_copied_ += bytes;
     open_.copies.push_back(std::move(c));
 }
 
@@ -136,24 +139,23 @@ void ReadbackRing::take_oldest(bool wait) {
 }
 
 void ReadbackRing::take(Frame& f) {
-    // Every buffer goes back to the free list before a hand-over can throw.
-    std::vector<std::pair<std::vector<float>, Done>> ready;
-    bool mapped = true;
+    // No copy here: each hand-over reads the mapped buffer where it lies, and the buffer goes
+    // back to the free list leased until the last PackedPixels of it is gone.
+    std::vector<std::pair<PackedPixels, Done>> ready;
     for (Copy& c : f.copies) {
-        std::vector<float> data;
-        if (const void* p = mapped ? glMapNamedBufferRange(c.buffer.id, 0, GLsizeiptr(c.bytes), GL_MAP_READ_BIT) : nullptr) {
-            data.resize((c.bytes + 3) / 4);
-            std::memcpy(data.data(), p, c.bytes);
-            glUnmapNamedBuffer(c.buffer.id);
-        } else {
-            mapped = false;
-        }
-        free_.push_back(c.buffer);
-        ready.emplace_back(std::move(data), std::move(c.done));
+        Buffer b = c.buffer;
+        b.lease->in_use.store(true, std::memory_order_relaxed);
+        PackedPixels p;
+        p.data = b.mapped;
+        p.size = c.bytes;
+        p.keep = std::shared_ptr<const void>(nullptr, [lease = b.lease](const void*) {
+            lease->in_use.store(false, std::memory_order_release);
+        });
+        free_.push_back(b);
+        ready.emplace_back(std::move(p), std::move(c.done));
     }
     f.copies.clear();
-    if (!mapped) throw std::runtime_error("read-back: cannot map a pixel-pack buffer");
-    for (auto& [data, done] : ready) done(std::move(data));
+    for (auto& [pixels, done] : ready) done(std::move(pixels));
 }
 
 }  // namespace pathlet
