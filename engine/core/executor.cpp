@@ -1,6 +1,7 @@
 #include "executor.hpp"
 
 #include "formats.hpp"
+#include "frames/async_output.hpp"
 #include "gl_context.hpp"
 #include "graph/hook_params.hpp"
 #include "image_io.hpp"
@@ -12,6 +13,7 @@
 #include <pathlet/gl_limits.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -240,12 +242,17 @@ void PassContext::bind_framebuffer(const std::vector<std::string>& color_pins, c
 }
 
 std::string PassContext::write_image(const std::string& pin, const std::string& pattern) {
-    Texture t = texture(pin);
-    Image img = read_texture(t.id, t.width, t.height, 0, 4);
-    std::string file = expand_pattern(pattern, {{"pass", pass_name()}}, frame_index());
-    ensure_parent_dir(file);
-    pathlet::write_image(file, img);
-    return file;
+    // Through the render's output side: a pixel-pack copy now, encoded on a writer thread, the
+    // file renamed into place once whole (Executor::finish() or the destructor waits for it).
+    AsyncOutput::Capture c;
+    c.what = "pass '" + pass_name() + "' input '" + pin + "'";
+    c.tex = texture(pin);
+    c.file = expand_pattern(pattern, {{"pass", pass_name()}}, frame_index());
+    ensure_parent_dir(c.file);
+    Executor& e = *impl_->exec;
+    if (!e.pass_output_) e.pass_output_ = std::make_unique<AsyncOutput>(AsyncOutput::Options{});
+    e.pass_output_->capture({c});
+    return c.file;
 }
 
 uint64_t PassContext::frame_index() const { return impl_->exec->frame_.index; }
@@ -283,6 +290,14 @@ Executor::Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene
     : gl_(gl), cg_(cg), scene_(scene), profiler_(profiler) {}
 
 Executor::~Executor() {
+    if (pass_output_) {  // what passes asked to write is written (a destructor cannot throw: told)
+        try {
+            pass_output_->finish();
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
+        }
+        pass_output_.reset();
+    }
     passes_.clear();  // pass destructors may delete their own GL objects
     contexts_.clear();
     for (auto& [k, fbo] : fbos_) glDeleteFramebuffers(1, &fbo);
@@ -505,15 +520,18 @@ void Executor::run_frame(const FrameInfo& f) {
         }
         if (profiler_) profiler_->end_pass();
         if (groups) glPopDebugGroup();
-        // The debug callback flags errors as they happen, so this check costs nothing when
-        // all is well; glGetError is polled once per frame below.
-        if (gl_.has_errors()) check_gl(cp.name, "execute");
+        // The debug callback flags errors as they happen, so this check costs nothing when all
+        // is well. glGetError (a round trip to a threaded driver) only with PATHLET_GL_DEBUG,
+        // after every pass; without it, errors no callback reported are caught at the end of
+        // the run (finish()). docs/performance.md.
+        if (groups || gl_.has_errors()) check_gl(cp.name, "execute");
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(0);
-    // Errors seen only here (no debug callback) cannot be pinned to one pass.
-    check_gl("(one of this frame's passes; PATHLET_GL_DEBUG=1 narrows it down)", "execute");
+    // A driver that reports from its own thread may flag an error after its pass's check.
+    if (gl_.has_errors()) check_gl("(one of this frame's passes; PATHLET_GL_DEBUG=1 narrows it down)", "execute");
     gl_.set_scope("");
+    if (pass_output_) pass_output_->poll();  // capture passes: what the GPU has copied goes to the writers
     if (profiler_) profiler_->end_frame();
     frames_in_flight_.end_frame();
     // History: what was written this frame becomes next frame's @prev.
@@ -530,6 +548,9 @@ void Executor::finish() {
             throw PassError("pass '" + cp.name + "' (" + cp.type->type + ") failed at the end of the run: " + e.what());
         }
     }
+    if (pass_output_) pass_output_->finish();  // the capture passes' files
+    // Errors no debug callback reported: glGetError is not asked per frame (docs/performance.md).
+    check_gl("(one of the run's passes; PATHLET_GL_DEBUG=1 narrows it down)", "the run");
 }
 
 // The documented state every pass starts from (pass.hpp): whatever the previous pass changed.

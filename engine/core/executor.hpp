@@ -20,6 +20,8 @@
 
 namespace pathlet {
 
+class AsyncOutput;
+
 class GlContext;
 class Profiler;
 
@@ -89,6 +91,7 @@ private:
     FrameInfo frame_;
     FramesInFlight frames_in_flight_;
     std::set<uint64_t> incomplete_;
+    std::unique_ptr<AsyncOutput> pass_output_;  // PassContext::write_image's files (the capture pass)
 };
 
 }  // namespace pathlet

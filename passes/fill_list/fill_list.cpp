@@ -211,8 +211,9 @@ private:
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
         drawer_.draw(ctx, *prog_);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        // Texture update: the heads' next glClearTexImage (and a glGetTextureImage) follow the atomics.
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
-                        GL_SHADER_STORAGE_BARRIER_BIT);
+                        GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     }
 
     static constexpr double kGrowAt = 0.75, kHeadroom = 1.5;
