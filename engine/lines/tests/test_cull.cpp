@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 using namespace pathlet;
 
@@ -103,11 +104,23 @@ const Scene& small_phantom() {
     return s;
 }
 
-// Largest RMS (0..255) between the runs' frames, over pixels either covers.
+// Largest RMS (0..255) between the runs' frames. Runs of different frame counts or image sizes,
+// or without frames, are a failure (and infinitely far apart), never "the same picture".
 double worst_rms(const CullRun& a, const CullRun& b) {
+    const double apart = std::numeric_limits<double>::infinity();
+    if (a.frames.empty() || a.frames.size() != b.frames.size()) {
+        ADD_FAILURE() << "runs of " << a.frames.size() << " and " << b.frames.size() << " frames: nothing to compare";
+        return apart;
+    }
     double worst = 0;
     for (size_t f = 0; f < a.frames.size(); ++f) {
         const Image &x = a.frames[f], &y = b.frames[f];
+        if (x.width != y.width || x.height != y.height || x.channels != y.channels || x.pixels.empty() ||
+            x.pixels.size() != y.pixels.size()) {
+            ADD_FAILURE() << "frame " << f << ": " << x.width << "x" << x.height << "x" << x.channels << " against " << y.width
+                          << "x" << y.height << "x" << y.channels;
+            return apart;
+        }
         double sq = 0;
         size_t n = 0;
         for (size_t i = 0; i < x.pixels.size(); ++i) {
