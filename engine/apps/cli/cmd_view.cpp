@@ -11,6 +11,7 @@
 #include "common_options.hpp"
 #include "executor.hpp"
 #include "image_io.hpp"
+#include "pixel_store.hpp"
 #include "plugin_host.hpp"
 #include "renderer.hpp"
 #include "util/atomic_file.hpp"
@@ -235,18 +236,53 @@ private:
     GLuint fbo_ = 0;
 };
 
-// The whole window (output and panels), top row first, for --screenshot-window.
-Image read_window(glm::ivec2 size) {
-    Image img;
-    img.width = size.x, img.height = size.y, img.channels = 4;
-    const size_t row = size_t(size.x) * 4;
-    std::vector<uint8_t> px(row * size_t(size.y));
-    glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-    img.pixels.resize(px.size());
-    for (int y = 0; y < size.y; ++y)  // GL rows are bottom-up
-        for (size_t x = 0; x < row; ++x) img.pixels[size_t(y) * row + x] = float(px[size_t(size.y - 1 - y) * row + x]) / 255.0f;
-    return img;
-}
+// The whole window (output and panels) for --screenshot-window, kept on the GPU: the window's
+// pixels are gone after the swap and closing it comes unannounced, so each frame is blitted
+// into a texture (no read-back, no wait) and only the last one is read, once, at the end.
+class WindowCopy {
+public:
+    WindowCopy() = default;
+    ~WindowCopy() {
+        if (fbo_) glDeleteFramebuffers(1, &fbo_);
+        if (tex_) glDeleteTextures(1, &tex_);
+    }
+    WindowCopy(const WindowCopy&) = delete;
+    WindowCopy& operator=(const WindowCopy&) = delete;
+    void copy(glm::ivec2 size) {
+        if (size != size_) {
+            if (fbo_) glDeleteFramebuffers(1, &fbo_);
+            if (tex_) glDeleteTextures(1, &tex_);
+            glCreateTextures(GL_TEXTURE_2D, 1, &tex_);
+            glTextureStorage2D(tex_, 1, GL_RGBA8, size.x, size.y);
+            glCreateFramebuffers(1, &fbo_);
+            glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, tex_, 0);
+            size_ = size;
+        }
+        glDisable(GL_SCISSOR_TEST);  // a blit is scissored (glReadPixels was not)
+        glBlitNamedFramebuffer(0, fbo_, 0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    bool empty() const { return tex_ == 0; }
+    // Top row first, bytes / 255 as glReadPixels of the window gave them.
+    Image read() const {
+        Image img;
+        img.width = size_.x, img.height = size_.y, img.channels = 4;
+        const size_t row = size_t(size_.x) * 4;
+        std::vector<uint8_t> px(row * size_t(size_.y));
+        {
+            const PlainPixelStore plain(PlainPixelStore::pack);
+            glGetTextureImage(tex_, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
+        }
+        img.pixels.resize(px.size());
+        for (int y = 0; y < size_.y; ++y)  // GL rows are bottom-up
+            for (size_t x = 0; x < row; ++x)
+                img.pixels[size_t(y) * row + x] = float(px[size_t(size_.y - 1 - y) * row + x]) / 255.0f;
+        return img;
+    }
+
+private:
+    GLuint tex_ = 0, fbo_ = 0;
+    glm::ivec2 size_{0};
+};
 
 // One shown frame is input(), frame(), present(); the loop runs until the window closes, Esc,
 // or --exit-after frames.
@@ -301,7 +337,8 @@ private:
     view::PanelActions act_;
     OutputBlit blit_;
     std::string shown_error_;
-    Image last_, last_window_;
+    Image last_;
+    WindowCopy window_copy_;
     long shown_ = 0;
     size_t next_event_ = 0;
     uint64_t index_ = 0;
@@ -391,10 +428,9 @@ void ViewLoop::present() {
     info_.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start_).count();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    // The window's pixels are gone after the swap: read them on the last frame when it is known
-    // (--exit-after), else on every frame (closing the window comes unannounced).
-    const bool last_frame = o_.exit_after != 0 && shown_ + 1 >= o_.exit_after;
-    if (!o_.screenshot_window.empty() && (o_.exit_after == 0 || last_frame)) last_window_ = read_window(o_.size);
+    // The window's pixels are gone after the swap: kept on the GPU on every frame (closing the
+    // window comes unannounced), read once in finish().
+    if (!o_.screenshot_window.empty()) window_copy_.copy(o_.size);
     if (screenshot_now_) {
         char name[64];
         std::snprintf(name, sizeof name, "pathlet_view_%05ld.png", shown_);
@@ -446,8 +482,8 @@ int ViewLoop::finish() {
         std::fprintf(stderr, "screenshot: %s\n", o_.screenshot.c_str());
     }
     if (!o_.screenshot_window.empty()) {
-        if (last_window_.width == 0) throw std::runtime_error("view: no frame was shown; no window screenshot written");
-        write_image(o_.screenshot_window, last_window_);
+        if (window_copy_.empty()) throw std::runtime_error("view: no frame was shown; no window screenshot written");
+        write_image(o_.screenshot_window, window_copy_.read());
         std::fprintf(stderr, "window screenshot: %s\n", o_.screenshot_window.c_str());
     }
     return scripted_ && !session_.error().empty() ? 1 : 0;  // a script whose last change failed

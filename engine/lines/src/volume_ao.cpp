@@ -54,8 +54,13 @@ VolumeAo::~VolumeAo() {
 static bool copy_on_gpu(const PassContext& ctx) {
     const std::string mode = ctx.params().s("density_copy");
     if (mode != "auto") return mode == "compute";
-    const GLubyte* r = glGetString(GL_RENDERER);
-    return software_rasterizer(r ? reinterpret_cast<const char*>(r) : "").empty();
+    // Asked of GL once a process, not every frame (a glGet is a round trip to a threaded
+    // driver); a process renders with one driver.
+    static const bool gpu = [] {
+        const GLubyte* r = glGetString(GL_RENDERER);
+        return software_rasterizer(r ? reinterpret_cast<const char*>(r) : "").empty();
+    }();
+    return gpu;
 }
 
 void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog) {
