@@ -8,8 +8,10 @@
 
 namespace pathlet {
 
-// PNG: ends with its IEND chunk. OpenEXR (single-part scan lines): every chunk the offset
-// table names lies inside the file. Any other format (or EXR layout): read_image reads it.
+// Without decoding the file, reading a few bytes of it: PNG ends with its IEND chunk, JPEG
+// with its end-of-image marker; OpenEXR (single-part scan lines): every chunk the offset table
+// names lies inside the file; TIFF: its first directory and every strip or tile it names do.
+// Any other format (or layout): read_image reads it.
 bool image_file_complete(const std::string& path);
 
 }  // namespace pathlet
