@@ -314,6 +314,20 @@ std::vector<std::string> Executor::shader_dirs_for(const PassTypeInfo& type) con
     return shader_search_path(type, cg_.dirs);
 }
 
+namespace {
+// What a pass sees: its parameters with each hook file as the compiler found it (a hook next
+// to the graph before a shipped one of the same name), and that file on its shader path.
+Params pass_params(const CompiledPass& cp) {
+    json params = cp.params;
+    for (const auto& h : cp.hooks)
+        if (params.value(h.param, "") == h.name) params[h.param] = h.file;
+    return Params(cp.name, params, cp.type);
+}
+void add_hook_files(const CompiledPass& cp, std::vector<std::string>& dirs) {
+    for (const auto& h : cp.hooks) dirs.push_back(h.file);
+}
+}  // namespace
+
 Executor::Physical Executor::make_physical(const PoolSlot& s, const std::string& full_label) {
     Physical p;
     // GL_MAX_LABEL_LENGTH is 256 on Mesa; long pooled labels ("a+b+c...") are cut.
@@ -425,8 +439,9 @@ void Executor::setup() {
         auto impl = std::make_unique<PassContextImpl>();
         impl->exec = this;
         impl->index = int(i);
-        impl->params = Params(cp.name, cp.params, cp.type);
+        impl->params = pass_params(cp);
         impl->shader_dirs = shader_dirs_for(*cp.type);
+        add_hook_files(cp, impl->shader_dirs);
         for (const PinDecl& pin : cp.type->pins)
             if (pin.kind == PinKind::Buffer) impl->buffer_binding.emplace(pin.name, int(impl->buffer_binding.size()));
         std::unique_ptr<Pass> pass;
@@ -466,7 +481,7 @@ void Executor::reparam(size_t i) {
     const CompiledPass& cp = cg_.passes[i];
     PassContextImpl& impl = *contexts_[i];
     Params old = impl.params;
-    impl.params = Params(cp.name, cp.params, cp.type);
+    impl.params = pass_params(cp);
     gl_.set_scope(cp.name);
     // The programs the pass has get the new parameters first; setup() then sets what it derives.
     auto set_up = [&] {

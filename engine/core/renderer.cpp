@@ -114,14 +114,7 @@ std::string graph_display_name(const GraphFile& g) {
     return g.name.empty() ? fs::path(g.path).stem().string() : g.name;
 }
 
-std::string resolve_graph_path(const std::string& arg) {
-    if (fs::exists(arg)) return arg;
-    for (std::string name : {arg, arg + ".json"}) {
-        fs::path p = fs::path(engine_share_dir()) / "graphs" / name;
-        if (fs::exists(p)) return p.string();
-    }
-    return arg;  // the parser reports "file not found" with the name as given
-}
+std::string resolve_graph_path(const std::string& arg) { return find_graph_file(arg); }
 
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {

@@ -109,7 +109,8 @@ std::string incomplete_frames_line(const RenderResult& r);
 
 // Name of a graph: its "name" field, else the file stem.
 std::string graph_display_name(const GraphFile& g);
-// Resolves a graph argument: a path, or a bare name found in the installed graphs folder.
+// Resolves a graph argument: a path, or a bare name found in the installed graphs folder;
+// GraphNotFound (with a did-you-mean) for neither (graph_model.hpp's find_graph_file).
 std::string resolve_graph_path(const std::string& arg);
 
 }  // namespace pathlet

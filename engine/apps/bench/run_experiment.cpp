@@ -28,7 +28,13 @@ Scene load_data_set(const DataSet& ds) {
 json graph_info(const Experiment& e, const std::string& origin) {
     json info = json::object();
     for (size_t gi = 0; gi < e.graphs.size(); ++gi) {
-        const std::string path = resolve_graph_path(e.graphs[gi].graph);
+        std::string path;
+        try {
+            path = resolve_graph_path(e.graphs[gi].graph);
+        } catch (const GraphNotFound& ex) {
+            if (origin.empty()) throw;  // a command line's graph list: the user's typo, exit 2
+            throw std::runtime_error(origin + ": /graphs/" + std::to_string(gi) + ": " + ex.what());
+        }
         if (!fs::is_regular_file(path))
             throw std::runtime_error((origin.empty() ? "" : origin + ": /graphs/" + std::to_string(gi) + ": ") +
                                      "no graph file or shipped graph named '" + e.graphs[gi].graph + "'");

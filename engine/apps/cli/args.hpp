@@ -31,6 +31,13 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Input that names what is not there or does not fit (a time outside the data): main() prints
+// "error: MESSAGE" (one line that names what was given and the fix) and exits 2. A graph name
+// that names nothing (GraphNotFound) is printed the same way.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 // A bug in a command's option declarations, never the user's fault.
 struct DeclarationError : std::logic_error {
     using std::logic_error::logic_error;

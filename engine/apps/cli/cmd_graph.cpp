@@ -12,6 +12,9 @@
 #include <pathlet/lines.hpp>
 #include "util/atomic_file.hpp"
 
+#include "util/text.hpp"
+
+#include <cmath>
 #include <cstdio>
 
 namespace pathlet::cli {
@@ -47,11 +50,38 @@ std::string scene_memory_text(const SceneOptions& data) {
     return buf;
 }
 
+std::string number(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", v);
+    return b;
+}
+
+// Every pass's parameters as this graph runs them: value, type, default, range, where a hook's
+// parameter is declared, and the doc (a hook's @param lines included).
+std::string params_text(const CompiledGraph& cg) {
+    std::string s;
+    for (const auto& p : cg.passes) {
+        s += p.name + " [" + p.type->type + "]\n";
+        for (const auto& h : p.hooks) s += "  (hook " + h.param + ": " + h.file + ")\n";
+        for (const ParamDecl& d : p.type->params) {
+            s += "  " + d.name + " = " + (p.params.contains(d.name) ? p.params[d.name].dump() : d.def.dump()) + "  (" +
+                 to_string(d.type) + ", default " + d.def.dump();
+            if ((d.type == ParamType::Int || d.type == ParamType::Float) && (std::isfinite(d.min) || std::isfinite(d.max)))
+                s += ", range [" + number(d.min) + ", " + number(d.max) + "]";
+            if (d.type == ParamType::Enum) s += ", one of " + text::join(d.choices);
+            if (d.pixels) s += ", pixels";
+            if (!d.origin.empty()) s += ", from " + d.origin;
+            s += ")\n      " + d.doc + "\n";
+        }
+    }
+    return s;
+}
+
 int run(const std::vector<std::string>& argv) {
     Args a("graph", "Compiles a graph for an output size and shows the result: the execution order, culled\n"
                     "passes and why, resource lifetimes, pooling and memory before and after pooling.");
     std::string graph, dot;
-    bool plan = false, as_json = false, expanded = false;
+    bool plan = false, as_json = false, expanded = false, params = false;
     glm::ivec2 size{1280, 720};
     std::vector<std::string> sets;
     PluginOptions plugins;
@@ -59,6 +89,8 @@ int run(const std::vector<std::string>& argv) {
     a.positional("GRAPH", graph, "graph file (or the name of a shipped graph, e.g. variant1_lineao)")
         .flag("plan", plan, "print the plan as text (the default)")
         .flag("json", as_json, "print the plan as JSON")
+        .flag("params", params, "print every pass's parameters as this graph runs them: value, type, default, range, "
+                                "doc; a hook file's @param parameters with the file and line that declare them")
         .flag("expanded", expanded, "print the graph as one JSON document: the graphs it extends merged in (the document "
                                     "error pointers refer to)")
         .option("dot", dot, "FILE", "write Graphviz DOT to FILE ('-' for stdout); render with: dot -Tsvg FILE -o g.svg");
@@ -69,6 +101,7 @@ int run(const std::vector<std::string>& argv) {
     a.example("pathlet graph variant1_lineao --plan", "order, lifetimes and memory of the LineAO graph")
         .example("pathlet graph variant1_lineao --plan --phantom study", "... and the memory of the study phantom's lines")
         .example("pathlet graph graphs/isl.json --dot isl.dot", "graph picture as DOT")
+        .example("pathlet graph plugins/example_fade/speed_fade_v1.json --params", "parameters, with the hook's own")
         .example("pathlet graph plugins/example_fade/speed_fade_v1.json --expanded", "a graph that extends variant 1, merged");
     if (!a.parse(argv)) return 0;
     Runtime rt;
@@ -90,9 +123,10 @@ int run(const std::vector<std::string>& argv) {
             else
                 write_file_atomic(dot, text);
         }
+        if (params) std::fputs(params_text(cg).c_str(), stdout);
         if (as_json)
             std::printf("%s\n", plan_to_json(cg).dump(2).c_str());
-        else if (plan || dot.empty()) {
+        else if (plan || (dot.empty() && !params)) {
             std::fputs(plan_to_text(cg).c_str(), stdout);
             std::fputs(scene_memory_text(data).c_str(), stdout);
         }

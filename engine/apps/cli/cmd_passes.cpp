@@ -7,6 +7,7 @@
 #include "util/text.hpp"
 
 #include <cstdio>
+#include <filesystem>
 
 namespace pathlet::cli {
 namespace {
@@ -18,6 +19,39 @@ std::shared_ptr<const PassTypeInfo> with_default_hooks(const PassTypeInfo& t) {
     } catch (const HookError& e) {
         std::fprintf(stderr, "warning: %s: default hook: %s\n", t.type.c_str(), e.what());
         return {&t, [](const PassTypeInfo*) {}};
+    }
+}
+
+// The type with the hooks --set names (color_hook=FILE: a file of yours, relative to the current
+// folder, or a name on the shader path): the parameters those hooks declare, with their docs.
+std::shared_ptr<const PassTypeInfo> with_hooks(const PassTypeInfo& t, const std::vector<std::string>& sets) {
+    json params = json::object();
+    std::vector<std::string> chosen;  // the user's files, found by their paths
+    for (const auto& set : sets) {
+        const auto eq = set.find('=');
+        const std::string name = set.substr(0, eq), value = eq == std::string::npos ? "" : set.substr(eq + 1);
+        const ParamDecl* d = t.param(name);
+        std::vector<std::string> hooks;
+        for (const auto& p : t.params)
+            if (!p.hook.empty()) hooks.push_back(p.name);
+        if (eq == std::string::npos || !d || d->hook.empty())
+            throw UsageError("--set " + set + ": --describe takes a hook file, " +
+                             (hooks.empty() ? std::string("and '") + t.type + "' has no hook parameters"
+                                            : "as " + text::join(hooks, "=FILE or ") + "=FILE" +
+                                                  text::did_you_mean(name, hooks)));
+        std::error_code ec;
+        std::string file = value;
+        if (value.find('/') != std::string::npos || std::filesystem::is_regular_file(value, ec)) {
+            file = std::filesystem::absolute(value).lexically_normal().string();
+            if (!std::filesystem::is_regular_file(file, ec)) throw InputError("--set " + set + ": no hook file " + file);
+            chosen.push_back(file);
+        }
+        params[name] = file;
+    }
+    try {
+        return instance_type(t, params, chosen);
+    } catch (const HookError& e) {
+        throw InputError(std::string(e.what()));
     }
 }
 
@@ -41,29 +75,33 @@ int run(const std::vector<std::string>& argv) {
            "A line pass's parameters include those its hook files declare (color_hook, width_hook):\n"
            "--describe shows them for the default hooks.");
     std::string describe;
+    std::vector<std::string> sets;
     bool as_json = false, markdown = false;
     PluginOptions plugins;
-    a.option("describe", describe, "TYPE", "print the parameters and pins of one pass type");
+    a.option("describe", describe, "TYPE", "print the parameters and pins of one pass type")
+        .multi("set", sets, "HOOK=FILE",
+               "with --describe: the pass with this hook file (color_hook=my_fade.glsl, width_hook=...): the "
+               "parameters its @param uniforms declare, with type, default, range and doc");
     plugins.declare(a, /*graph_files=*/false);
     a.flag("json", as_json, "print the declarations as JSON (for tools and docs)")
         .flag("markdown", markdown, "with --describe: the parameter and pin tables as Markdown, as pass READMEs embed "
                                     "them; alone: the index of every pass type, as passes/README.md embeds it "
                                     "(scripts/update-pass-docs.sh)")
         .example("pathlet passes", "list all pass types")
-        .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao");
+        .example("pathlet passes --describe lineao", "parameters (type, default, range, doc) and pins of lineao")
+        .example("pathlet passes --describe fill_list --set color_hook=my_fade.glsl", "... with your hook's parameters");
     if (!a.parse(argv)) return 0;
+    if (!sets.empty() && describe.empty()) throw UsageError("--set needs --describe TYPE");
     Runtime rt;
     plugins.load(rt);
     if (!describe.empty()) {
         const PassTypeInfo* t = rt.registry.find(describe);
         if (!t) {
-            std::string hint = text::closest_match(describe, rt.registry.names());
-            std::fprintf(stderr, "pathlet passes: no pass type '%s'%s%s\n", describe.c_str(),
-                         hint.empty() ? "" : ("; did you mean '" + hint + "'?").c_str(),
-                         rt.plugin_problems_note().c_str());
-            return 1;
+            std::fprintf(stderr, "error: no pass type '%s'%s; 'pathlet passes' lists them%s\n", describe.c_str(),
+                         text::did_you_mean(describe, rt.registry.names()).c_str(), rt.plugin_problems_note().c_str());
+            return 2;
         }
-        const auto inst = with_default_hooks(*t);
+        const auto inst = sets.empty() ? with_default_hooks(*t) : with_hooks(*t, sets);
         std::fputs((markdown ? inst->markdown() : inst->describe()).c_str(), stdout);
         return 0;
     }

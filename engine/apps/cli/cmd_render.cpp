@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "common_options.hpp"
 #include "graph_errors.hpp"
+#include "output_folders.hpp"
 #include "progress.hpp"
 #include "renderer.hpp"
 #include "util/atomic_file.hpp"
@@ -70,7 +71,7 @@ int run(const std::vector<std::string>& argv) {
     std::optional<TimeRange> time;
     std::optional<Shard> shard;
     double fps = 25;
-    bool no_images = false;
+    bool no_images = false, allow_empty = false;
     PluginOptions plugins;
     SceneOptions data;
     a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
@@ -91,7 +92,10 @@ int run(const std::vector<std::string>& argv) {
         .option("fps", fps, "N", "video frame rate")
         .option("shard", shard, "I/N", "render only frames k with k % N == I (0-based; Slurm array part), same file names")
         .flag("no-images", no_images, "do not write image files (timing runs)")
-        .flag("quiet", opt.quiet, "no progress bar or notes");
+        .flag("quiet", opt.quiet, "no progress bar or notes")
+        .flag("allow-empty-frames", allow_empty,
+              "render the --time asked for even where it lies outside the data's time span (those frames are "
+              "empty); without it such a time is an error naming the span");
     plugins.declare(a);
     data.declare(a);
     a.example("pathlet render", "the phantom through variant1_lineao.json into out/, with a timing table")
@@ -103,7 +107,7 @@ int run(const std::vector<std::string>& argv) {
                  "your own data, 25 fps, as a video");
     if (!a.parse(argv)) return 0;
 
-    opt.graph_path = resolve_graph_path(graph);
+    opt.graph_path = resolve_graph_path(graph);  // an unknown name: one line, exit 2, before anything else
     if (shard) opt.shard_index = shard->index, opt.shard_count = shard->count;
     try {
         check_render_limits(opt);
@@ -117,16 +121,25 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "warning: ffmpeg not found on PATH; --video ignored (images are still written)\n"),
             video_path.clear();
 
-    // Before GL set-up and data loading: every output place must take files.
-    if (opt.write_images) check_output_dir(opt.out_dir, "images (--out)");
-    if (!report.empty()) check_output_file(report + ".csv", "the timing report (--report)");
-    if (!video_path.empty()) check_output_file(video_path, "the video (--video)");
-
     Runtime rt;
     plugins.load(rt);
     opt.sets = rt.user_sets(opt.sets);
+    // Nothing is made before the inputs are known good: the graph compiles (no GL) first, the
+    // output places are checked without leaving a folder, then the data and the time.
+    std::vector<std::string> folders;
+    try {
+        const CompiledGraph cg = compile_graph(rt.load_graph(opt.graph_path, opt.sets), rt.registry, opt.size * opt.ssaa);
+        if (opt.write_images) folders = capture_folders(cg, opt.out_dir, opt.size);
+    } catch (const GraphError& e) {
+        return report_graph_error(e, rt);
+    }
+    if (opt.write_images) check_output_dir(opt.out_dir, "images (--out)", /*keep=*/false);
+    if (!report.empty()) check_output_file(report + ".csv", "the timing report (--report)", false);
+    if (!video_path.empty()) check_output_file(video_path, "the video (--video)", false);
     Scene scene = data.load(opt.quiet);
     opt.time = time ? *time : default_time_range(scene);
+    if (time) check_time_in_data(*time, shown(*time), scene, allow_empty);
+    if (!opt.quiet) note_shared_folders(folders, opt.graph_path);
     try {
         std::unique_ptr<VideoWriter> video;
         if (!video_path.empty()) {
@@ -168,6 +181,7 @@ int run(const std::vector<std::string>& argv) {
         std::printf("%s", r.profiler.table(title).c_str());
         if (!r.files.empty())
             std::fprintf(stderr, "wrote %zu file(s), e.g. %s\n", r.files.size(), r.files.back().c_str());
+        mark_folders(folders, opt.graph_path);
         if (!report.empty()) {
             json meta = {{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()}, {"size", {opt.size.x, opt.size.y}},
                          {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables},

@@ -2,6 +2,8 @@
 #include "args.hpp"
 #include "build_info.hpp"
 #include "commands.hpp"
+#include "graph/graph_model.hpp"
+#include "util/text.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -48,6 +50,12 @@ int main(int argc, char** argv) {
         if (c.name != args[0]) continue;
         try {
             return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
+            return 2;
+        } catch (const pathlet::GraphNotFound& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
+            return 2;
         } catch (const UsageError& e) {
             std::fprintf(stderr, "pathlet %s: %s\n(see 'pathlet %s --help')\n", c.name.c_str(), e.what(), c.name.c_str());
             return 2;
@@ -59,6 +67,9 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    std::fprintf(stderr, "pathlet: unknown command '%s' (see 'pathlet --help')\n", args[0].c_str());
+    std::vector<std::string> names;
+    for (const auto& c : commands()) names.push_back(c.name);
+    std::fprintf(stderr, "error: unknown command '%s'%s; see 'pathlet --help' for the commands\n", args[0].c_str(),
+                 pathlet::text::did_you_mean(args[0], names).c_str());
     return 2;
 }

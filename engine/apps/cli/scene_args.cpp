@@ -1,5 +1,8 @@
 #include "scene_args.hpp"
 
+#include "args.hpp"
+#include "renderer.hpp"
+
 #include "fraction_progress.hpp"
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
@@ -7,6 +10,7 @@
 #include "phantom/phantom.hpp"
 #include "util/text.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace pathlet::cli {
@@ -48,6 +52,21 @@ Scene load_scene(const SceneSource& src, bool quiet) {
                      scene.mesh ? (", wall " + std::to_string(scene.mesh->index.size() / 3) + " triangles").c_str() : "");
     }
     return scene;
+}
+
+void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty) {
+    if (allow_empty || scene.lines.timeless) return;
+    const double t0 = scene.lines.time_min(), t1 = scene.lines.time_max();
+    const double slack = 1e-6 * std::max(1.0, t1 - t0);
+    const std::vector<double> times = t.times();
+    const double first = times.front(), last = times.back();
+    if (first >= t0 - slack && last <= t1 + slack) return;
+    char span[160];
+    std::snprintf(span, sizeof span, "%g..%g s", t0, t1);
+    const std::string what = times.size() == 1 ? "is outside" : "reaches outside";
+    throw InputError("--time " + given + " " + what + " the data's time span, " + span + " (" + scene.source +
+                     "): its frames would be empty; give a time within " + span +
+                     ", or --allow-empty-frames to render them anyway");
 }
 
 }  // namespace pathlet::cli

@@ -8,6 +8,10 @@
 
 #include <string>
 
+namespace pathlet {
+struct TimeRange;
+}
+
 namespace pathlet::cli {
 
 struct SceneSource {
@@ -21,5 +25,10 @@ struct SceneSource {
 // stderr either way (a file that needed repairs should say so). A data set with no line left to
 // draw after repair is a DataError naming the file and what the repair dropped.
 Scene load_scene(const SceneSource& src, bool quiet);
+
+// A time the user gave that reaches outside the data's time span would render frames with
+// nothing in them: InputError (exit 2) naming what was given and the data's span, unless
+// `allow_empty` (--allow-empty-frames). Data without time takes any time.
+void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty);
 
 }  // namespace pathlet::cli

@@ -2,8 +2,10 @@
 // writer's readers and outputs), cull (with reasons), order (stable topological), lifetimes,
 // resolve parameters and resources (formats, sizes, bytes), passes, then pooling (graph_pool.cpp).
 #include "graph_internal.hpp"
+#include "hook_params.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <optional>
 #include <queue>
 #include <set>
@@ -245,6 +247,19 @@ private:
         return c;
     }
 
+    // The files the pass's hook parameters name, as found (validated: each is there).
+    std::vector<CompiledPass::HookFile> hook_files(const PassTypeInfo& t, const json& params) const {
+        std::vector<CompiledPass::HookFile> out;
+        for (const ParamDecl& d : t.params) {
+            if (d.hook.empty() || !params.contains(d.name) || !params[d.name].is_string()) continue;
+            const std::string name = params[d.name].get<std::string>();
+            if (name.empty()) continue;
+            const std::string file = find_hook_file(name, t, g_.dirs);
+            out.push_back({d.name, name, std::filesystem::absolute(file).lexically_normal().string()});
+        }
+        return out;
+    }
+
     // Passes in execution order, with resolved parameters and bindings; the outputs by name.
     void compiled_passes(CompiledGraph& cg) const {
         for (int p : order_) {
@@ -254,6 +269,7 @@ private:
             c.type = idx_.types[p];
             c.pointer = d.pointer;
             c.params = params_[p];
+            c.hooks = hook_files(*c.type, c.params);
             for (const auto& b : inputs_[p]) c.bindings[b.pin] = {compiled_index_[b.resource], b.prev};
             for (const auto& b : idx_.outputs[p]) {
                 c.bindings[b.pin] = {compiled_index_[b.resource], false};

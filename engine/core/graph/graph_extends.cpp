@@ -7,7 +7,9 @@
 //                          "enabled" and "doc" replace, "remove": true drops the pass); a new name
 //                          adds a pass and needs a "type"
 //   outputs                replace the base's list when given
-//   name, description      replace; plugin_dirs add to the base's (each against its own file)
+//   name                   belongs to its file: never inherited (a graph without one is named
+//                          after its file, so two graphs never share a name or output folder by accident)
+//   description            replaces; plugin_dirs add to the base's (each against its own file)
 //
 // The merged document is then parsed and validated as one graph, so every error names a JSON
 // pointer into it (`pathlet graph FILE --expanded` prints it). Bases may extend bases; a cycle,
@@ -48,10 +50,7 @@ std::string base_path(const std::string& ref, const std::string& from, std::stri
     const fs::path shipped = fs::path(engine_share_dir()) / "graphs" / (ref + ".json");
     std::error_code ec;
     if (fs::is_regular_file(shipped, ec)) return shipped.string();
-    std::vector<std::string> names;
-    for (fs::directory_iterator it(fs::path(engine_share_dir()) / "graphs", ec), end; !ec && it != end; it.increment(ec))
-        if (it->path().extension() == ".json") names.push_back(it->path().stem().string());
-    std::sort(names.begin(), names.end());
+    const std::vector<std::string> names = shipped_graph_names();
     err = "unknown base graph '" + ref + "'" + did_you_mean(ref, names) + "; shipped graphs: " + join(names) +
           " (or give a .json path)";
     return "";
@@ -174,6 +173,8 @@ json graph_detail::expand_extends(json root, const std::string& path, std::vecto
         for (auto& d : base["plugin_dirs"])
             if (d.is_string() && !fs::path(d.get<std::string>()).is_absolute())
                 d = (fs::path(base_file).parent_path() / d.get<std::string>()).lexically_normal().string();
+
+    base.erase("name");  // a graph's name is its own file's (or that file's name)
 
     std::vector<Diagnostic> diags;
     Merger m(path, diags, *changes);

@@ -54,7 +54,7 @@ void swap_hook_params(GraphFile& g, PassDecl& p, const PassTypeInfo& t, const Pa
         swaps.push_back(d.name + " " + (now.empty() ? std::string("(the kit's default)") : quoted(file_name(now))) +
                         " replaces " + (before.empty() ? std::string("the kit's default") : quoted(file_name(before))));
         if (before.empty() || !check_hook_name(before, g.dirs).empty()) continue;
-        if (dirs.empty()) dirs = shader_search_path(t, g.dirs);
+        if (dirs.empty()) dirs = hook_search_path(t, g.dirs);
         try {
             for (const ParamDecl& h : hook_params(before, d.hook, dirs)) replaced.insert(h.name);
         } catch (const HookError&) {

@@ -39,7 +39,7 @@ struct GraphError : std::runtime_error {
 struct VariableDecl {
     std::string name;
     ParamDecl decl;   // type, default, range, doc (same rules as pass parameters)
-    json value;       // default or --set override, already coerced
+    json value;       // default or --set override, already coerced; null: its declaration is wrong
     std::string pointer;
 };
 
@@ -92,6 +92,7 @@ struct OutputDecl {
 struct GraphFile {
     std::string path;
     int version = 1;
+    // "name" of the file itself (never a base's), else the file's name without .json.
     std::string name, description;
     std::vector<VariableDecl> variables;
     std::vector<ResourceDecl> resources;
@@ -142,6 +143,12 @@ struct CompiledPass {
     // declare (kept alive by CompiledGraph::instance_types).
     const PassTypeInfo* type = nullptr;
     json params;                                 // resolved: defaults + graph + variables + --set
+    // The hook files its hook parameters name, as found (next to the graph before the shader
+    // path): what its programs compile and `graph --plan` names.
+    struct HookFile {
+        std::string param, name, file;  // "color_hook", "my_fade.glsl", "/home/me/fig/my_fade.glsl"
+    };
+    std::vector<HookFile> hooks;
     std::map<std::string, Binding> bindings;     // pin -> resource
     std::string pointer;
 };
@@ -178,10 +185,27 @@ struct CompiledGraph {
     int find_resource(const std::string& name) const;
 };
 
+// ---- finding graphs -------------------------------------------------------------------
+
+// A graph argument that is neither a file nor a shipped graph's name. The message is one line:
+// what was given, the closest names (did-you-mean) and the shipped graphs.
+struct GraphNotFound : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
+// The names of the shipped graphs (graphs/*.json in the share folder, without .json), sorted.
+std::vector<std::string> shipped_graph_names();
+// A graph argument as every command and list takes it: a file (path as given), or the name of a
+// shipped graph (with or without .json). Throws GraphNotFound before anything else is done.
+std::string find_graph_file(const std::string& arg);
+
 // ---- the steps ------------------------------------------------------------------------
 
 // Parses a graph file (comments allowed). Syntax and structure errors -> GraphError.
 GraphFile parse_graph_file(const std::string& path);
+// The same, collecting: the problems of its parts (a variable's default, a resource's format)
+// go to `diags` and the rest is returned for validate_graph, so `validate` reports every error
+// in one run (a variable declared wrongly has a null value). Unreadable JSON still throws.
+GraphFile parse_graph_file(const std::string& path, std::vector<Diagnostic>& diags);
 GraphFile parse_graph_json(const std::string& text, const std::string& path_for_messages);
 // The JSON a graph file stands for: with the graphs it extends merged in (graph --expanded).
 json expanded_graph_json(const std::string& path);

@@ -162,6 +162,13 @@ private:
             }
     }
 
+    // A variable whose declaration is wrong (reported) stays, without a value: what uses it is
+    // checked for everything else (parse_graph_file with diagnostics: validate's every error).
+    void keep_broken(GraphFile& g, VariableDecl var) {
+        var.value = nullptr;
+        g.variables.push_back(std::move(var));
+    }
+
     void parse_variable(GraphFile& g, const std::string& name, const json& v) {
         const std::string ptr = "/variables/" + pointer_escape(name);
         check_name(name, ptr, "variable");
@@ -190,7 +197,7 @@ private:
             error(ptr + "/type", v.contains("type") ? "unknown variable type '" + type + "'" + did_you_mean(type, type_names) +
                                                           "; one of " + join(type_names)
                                                     : "a variable needs a \"type\": one of " + join(type_names));
-            return;
+            return keep_broken(g, std::move(var));
         }
         const bool numeric = var.decl.type == ParamType::Int || var.decl.type == ParamType::Float;
         for (const char* k : {"min", "max"}) {
@@ -210,16 +217,16 @@ private:
                 }
         } else if (var.decl.type == ParamType::Enum) {
             error(ptr, "an enum variable needs \"choices\"");
-            return;
+            return keep_broken(g, std::move(var));
         }
         if (!v.contains("default")) {
             error(ptr, "a variable needs a \"default\"");
-            return;
+            return keep_broken(g, std::move(var));
         }
         std::string err = var.decl.coerce(v["default"], var.value);
         if (!err.empty()) {
             error(ptr + "/default", "default of variable '" + name + "' " + err);
-            return;
+            return keep_broken(g, std::move(var));
         }
         var.decl.def = var.value;
         g.variables.push_back(std::move(var));
@@ -420,13 +427,18 @@ json graph_detail::read_graph_json(const std::string& path) {
 
 namespace {
 // Merges the extends chain in, then parses the whole as one graph.
-GraphFile parse_root(json root, const std::string& path) {
+// With `diags`, problems of the document's parts go there and what could be read is returned;
+// without, they are thrown (a JSON syntax error or a wrong "extends" is thrown either way).
+GraphFile parse_root(json root, const std::string& path, std::vector<Diagnostic>* diags = nullptr) {
     std::vector<std::string> dirs, chain;
     std::vector<ExtendsChange> changes;
     root = expand_extends(std::move(root), path, dirs, chain, &changes);
     Parser p(path);
     GraphFile g = p.parse(root);
-    if (!p.diags.empty()) throw GraphError(std::move(p.diags));
+    if (!p.diags.empty() && !diags) throw GraphError(std::move(p.diags));
+    if (diags) diags->insert(diags->end(), p.diags.begin(), p.diags.end());
+    // No "name": the file's name (fade_v1.json is "fade_v1"), in titles, {graph} and the plan.
+    if (g.name.empty()) g.name = std::filesystem::path(path).stem().string();
     g.dirs = std::move(dirs);
     g.extends = std::move(chain);
     for (auto& c : changes)
@@ -449,5 +461,9 @@ json expanded_graph_json(const std::string& path) {
 }
 
 GraphFile parse_graph_file(const std::string& path) { return parse_root(read_graph_json(path), path); }
+
+GraphFile parse_graph_file(const std::string& path, std::vector<Diagnostic>& diags) {
+    return parse_root(read_graph_json(path), path, &diags);
+}
 
 }  // namespace pathlet

@@ -54,6 +54,7 @@ std::string plan_to_text(const CompiledGraph& cg) {
     for (size_t i = 0; i < cg.passes.size(); ++i) {
         const CompiledPass& p = cg.passes[i];
         s << "  " << i << ". " << p.name << " [" << p.type->type << "]\n";
+        for (const auto& h : p.hooks) s << "       hook " << h.param << " = " << h.name << ": " << h.file << "\n";
         for (const auto& [pin, b] : p.bindings) {
             const PinDecl* d = p.type->pin(pin);
             const bool out = d && d->dir == PinDir::Output;
@@ -100,7 +101,9 @@ json plan_to_json(const CompiledGraph& cg) {
                       {"dir", d && d->dir == PinDir::Output ? "output" : "input"},
                       {"previous", x.previous}};
         }
-        j["passes"].push_back({{"name", p.name}, {"type", p.type->type}, {"params", p.params}, {"bindings", b}});
+        json hooks = json::object();
+        for (const auto& h : p.hooks) hooks[h.param] = {{"name", h.name}, {"file", h.file}};
+        j["passes"].push_back({{"name", p.name}, {"type", p.type->type}, {"params", p.params}, {"bindings", b}, {"hooks", hooks}});
     }
     j["culled"] = json::array();
     for (const auto& c : cg.culled) j["culled"].push_back({{"name", c.name}, {"reason", c.reason}});

@@ -48,6 +48,10 @@ std::string resolve_param(const GraphFile& g, const ParamDecl& d, const json& wr
     std::string err;
     const VariableDecl* v = lookup(g, written, err);
     if (!v) return err;
+    if (v->value.is_null()) {  // its declaration is wrong, reported there: the parameter's default meanwhile
+        out = d.def;
+        return "";
+    }
     if (!compatible(v->decl.type, d.type))
         return "variable '$" + v->name + "' is " + to_string(v->decl.type) + " but parameter '" + d.name + "' is " +
                to_string(d.type);
@@ -64,6 +68,7 @@ std::string resolve_enabled(const GraphFile& g, const json& enabled, bool& out) 
     std::string err;
     const VariableDecl* v = lookup(g, enabled, err);
     if (!v) return err;
+    if (v->value.is_null()) return out = true, "";  // a wrong declaration, reported there
     if (v->decl.type != ParamType::Bool)
         return "enabled needs a bool variable, but '$" + v->name + "' is " + to_string(v->decl.type);
     out = v->value.get<bool>();

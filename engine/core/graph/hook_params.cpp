@@ -41,6 +41,13 @@ std::vector<std::string> shader_search_path(const PassTypeInfo& type, const std:
     return dirs;
 }
 
+std::vector<std::string> hook_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs) {
+    std::vector<std::string> dirs = graph_dirs;
+    for (auto& d : shader_search_path(type, {}))
+        if (std::find(dirs.begin(), dirs.end(), d) == dirs.end()) dirs.push_back(std::move(d));
+    return dirs;
+}
+
 bool is_chosen_file(const std::string& name, const std::vector<std::string>& dirs) {
     return fs::path(name).is_absolute() && std::find(dirs.begin(), dirs.end(), name) != dirs.end();
 }
@@ -289,6 +296,10 @@ std::vector<ParamDecl> hook_params(const std::string& name, const std::string& r
     return out;
 }
 
+std::string find_hook_file(const std::string& name, const PassTypeInfo& type, const std::vector<std::string>& graph_dirs) {
+    return find_file(name, hook_search_path(type, graph_dirs));
+}
+
 std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, const json& params,
                                                   const std::vector<std::string>& graph_dirs) {
     std::vector<ParamDecl> extra;
@@ -300,7 +311,7 @@ std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, cons
         if (file.empty()) continue;  // the kit's default hook: no parameters
         if (std::string err = check_hook_name(file, graph_dirs); !err.empty())
             throw HookError(hook.name + " '" + file + "': " + err);
-        if (dirs.empty()) dirs = shader_search_path(type, graph_dirs);
+        if (dirs.empty()) dirs = hook_search_path(type, graph_dirs);
         for (ParamDecl& d : hook_params(file, hook.hook, dirs)) {
             if (const ParamDecl* clash = type.param(d.name))
                 throw HookError(d.origin + ": parameter '" + d.name + "' is already one of pass type '" + type.type +

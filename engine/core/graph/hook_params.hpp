@@ -36,6 +36,13 @@ struct HookError : std::runtime_error {
 // GraphFile::dirs).
 std::vector<std::string> shader_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
 
+// Where a pass's hook files are found, in order: `graph_dirs` first (a hook next to the graph
+// wins over a shipped file of the same name: the graph's folder is one the user chose), then
+// the shader path. Scanning for @param, `graph --plan` and the programs all find hooks here.
+std::vector<std::string> hook_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
+// The file hook `name` (a hook parameter's value) is, on hook_search_path. Throws HookError.
+std::string find_hook_file(const std::string& name, const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
+
 // A hook name as a graph may give it: a plain file name ending in .frag, .geom or .glsl, found
 // on the shader path (no folders, no '..'), or an absolute path that is itself an entry of
 // `graph_dirs` (a file the user named: --set, Python). Returns "" or what is wrong with it.

@@ -3,6 +3,7 @@
 #include "raw_polylines.hpp"
 
 #include "byte_reader.hpp"
+#include "util/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -74,10 +75,10 @@ static const RawArray* pick(const std::vector<RawArray>& arrays, const std::stri
                                              " components, expected " + std::to_string(comps));
                 return &a;
             }
-        std::string names;
-        for (auto& a : arrays) names += (names.empty() ? "" : ", ") + a.name;
-        fail_at(file, where, std::string("no point array named '") + wanted + "' (" + option + "); arrays present: " +
-                                 (names.empty() ? "none" : names));
+        std::vector<std::string> names;
+        for (auto& a : arrays) names.push_back(a.name);
+        fail_at(file, where, std::string("no point array named '") + wanted + "'" + text::did_you_mean(wanted, names) + " (" +
+                                 option + "); arrays present: " + (names.empty() ? "none" : text::join(names)));
     }
     for (const char* name : automatic)
         for (auto& a : arrays)
@@ -99,17 +100,17 @@ Pathlines assemble_pathlines(RawPolylines&& raw, const LoadOptions& opts, LoadRe
         return out;
     }
     const RawArray* t = pick(raw.point_arrays, opts.time_array, {"time", "t", "integrationtime"}, 1, "time",
-                             "--time-array / LoadOptions::time_array", file, raw.where_data);
+                             "--time-array; time_array= in Python", file, raw.where_data);
     const RawArray* v = pick(raw.point_arrays, opts.velocity_array, {"velocity", "vel", "u", "v"}, 3, "velocity",
-                             "--velocity-array / LoadOptions::velocity_array", file, raw.where_data);
+                             "--velocity-array; velocity_array= in Python", file, raw.where_data);
     if (!t && !v && !opts.streamlines && !opts.pseudo_time) {
         std::string names;
         for (auto& s : report.arrays) names += (names.empty() ? "" : ", ") + s;
         fail_at(file, raw.where_data,
                 "no time array and no velocity array, so pathline time cannot be derived. Point arrays present: " +
                     (names.empty() ? std::string("none") : names) +
-                    ". Name the time array with --time-array NAME (LoadOptions::time_array) or the velocity with "
-                    "--velocity-array NAME; streamlines without either load with --streamlines (drawn whole) or "
+                    ". Name the time array with --time-array NAME or the velocity with --velocity-array NAME (in Python: "
+                    "time_array=, velocity_array=); streamlines without either load with --streamlines (drawn whole) or "
                     "--pseudo-time (animated along the arc length)");
     }
     const size_t total = raw.connectivity.size();

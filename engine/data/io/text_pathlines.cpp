@@ -47,7 +47,7 @@ Pathlines read_text_rows(std::string_view bytes, const std::string& file, const 
         pl.lines.push_back({first, uint32_t(n - skip)});
     }
     report.warnings.push_back("plain text has no time: sample k is at k * " + std::to_string(dt) + " s" +
-                              (opts.time_step > 0 ? "" : " (default; set LoadOptions::time_step / --time-step)"));
+                              (opts.time_step > 0 ? "" : " (the default; give the real one with --time-step SECONDS, in Python load(..., time_step=SECONDS))"));
     if (late_copies)
         report.warnings.push_back("late release: dropped " + std::to_string(late_copies) + " leading copies of the seed point in " +
                                   std::to_string(late_lines) + " lines (" + std::to_string(raw_samples) + " raw samples)");

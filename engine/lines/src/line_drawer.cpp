@@ -62,15 +62,18 @@ Hooks hooks(const PassContext& ctx) {
     return {p.s("width_hook"), p.s("color_hook")};
 }
 
-ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
-                       const std::vector<std::string>& defines) {
+std::string hook_entry(const std::string& file, const std::string& role) {
     // A hook is only its function: compiled as the stage its role needs, after the kit's
     // definitions (LinePoint, the uniform block: ShaderProgram's "stage:prelude+file").
-    auto hook = [](const std::string& file, const char* stage) { return std::string(stage) + ":line_hooks.glsl+" + file; };
+    return std::string(role == "width" ? "geom" : "frag") + ":line_hooks.glsl+" + file;
+}
+
+ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
+                       const std::vector<std::string>& defines) {
     std::vector<std::string> files{"line_kit.vert", "line_quad.geom",
-                                   hooks.width.empty() ? "line_width_default.geom" : hook(hooks.width, "geom")};
+                                   hooks.width.empty() ? "line_width_default.geom" : hook_entry(hooks.width, "width")};
     files.insert(files.end(), fragment.begin(), fragment.end());
-    files.push_back(hooks.color.empty() ? "line_color_default.frag" : hook(hooks.color, "frag"));
+    files.push_back(hooks.color.empty() ? "line_color_default.frag" : hook_entry(hooks.color, "color"));
     std::vector<std::string> all = defines;
     if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
     // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both

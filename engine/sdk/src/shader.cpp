@@ -64,6 +64,15 @@ bool is_version_line(const std::string& line) {
     return std::regex_match(line, version_re);
 }
 
+// Where each file's lines are numbered: file k's line n is "#line k*kLinesPerFile+n k". The
+// source-string number alone is not enough: Mesa reports source 0 for errors in compound
+// expressions (a wrong struct field, a wrong argument type: its parser's default location
+// drops the number), so the line itself says the file too (map_log decodes both).
+constexpr long kLinesPerFile = 1000000;
+std::string line_directive(long line, size_t file) {
+    return "#line " + std::to_string(long(file) * kLinesPerFile + line) + " " + std::to_string(file) + "\n";
+}
+
 // Inlines #include "x" recursively. Each file gets a source-string number for #line, so the
 // compiler's messages can be mapped back to the file names in `files`. A file's own #version
 // line becomes an empty line (compose() puts one version line first), so its lines keep their
@@ -88,9 +97,9 @@ std::string expand(const std::string& path, const std::vector<std::string>& dirs
             } catch (const ShaderError& e) {
                 throw ShaderError(path + ":" + std::to_string(n) + ": " + e.what());
             }
-            out << "#line 1 " << files.size() << "\n";
+            out << line_directive(1, files.size());
             out << expand(inc, dirs, files, depth + 1);
-            out << "#line " << (n + 1) << " " << id << "\n";
+            out << line_directive(n + 1, size_t(id));
         } else if (depth == 0 && is_version_line(line)) {
             out << "\n";
         } else {
@@ -121,7 +130,7 @@ std::string compose(const std::vector<std::string>& paths, const std::vector<std
     out << version << "\n";
     for (const auto& d : defines) out << "#define " << d << "\n";
     for (const auto& p : paths) {
-        out << "#line 1 " << files.size() << "\n";
+        out << line_directive(1, files.size());
         out << expand(p, dirs, files, 0);
     }
     return out.str();
@@ -146,7 +155,8 @@ Entry parse_entry(const std::string& entry) {
     return e;
 }
 
-// Rewrites "0:12(3): error: ..." (Mesa) and "0(12) : error ..." (NVIDIA) into "file:12: error: ...".
+// Rewrites "0:12(3): error: ..." (Mesa) and "0(12) : error ..." (NVIDIA) into "file:12: error: ...",
+// the file from the line's number where it holds one (line_directive), else from the source string.
 std::string map_log(const std::string& log, const std::vector<std::string>& files) {
     static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
     static const std::regex nv(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
@@ -155,14 +165,17 @@ std::string map_log(const std::string& log, const std::vector<std::string>& file
     std::string line;
     while (std::getline(in, line)) {
         std::smatch m;
-        auto file_of = [&](const std::string& idx) {
+        // "file:line" of source string `idx` and line `at` as the compiler reports them.
+        auto place = [&](const std::string& idx, const std::string& at) {
             size_t i = std::stoul(idx);
-            return i < files.size() ? files[i] : "<source " + idx + ">";
+            long n = std::stol(at);
+            if (n >= kLinesPerFile) i = size_t(n / kLinesPerFile), n %= kLinesPerFile;
+            return (i < files.size() ? files[i] : "<source " + std::to_string(i) + ">") + ":" + std::to_string(n);
         };
         if (std::regex_match(line, m, mesa))
-            out << file_of(m[1]) << ":" << m[2] << ":" << m[3] << ": " << m[4] << "\n";
+            out << place(m[1], m[2]) << ":" << m[3] << ": " << m[4] << "\n";
         else if (std::regex_match(line, m, nv))
-            out << file_of(m[1]) << ":" << m[2] << ": " << m[3] << "\n";
+            out << place(m[1], m[2]) << ": " << m[3] << "\n";
         else if (!line.empty())
             out << line << "\n";
     }

@@ -51,6 +51,10 @@ struct Hooks {
 };
 // The hook files a kit pass's parameters name (color_hook, width_hook).
 Hooks hooks(const PassContext& ctx);
+// One hook as the stage its role needs ("width": geometry, "color": fragment), after the kit's
+// definitions: a ShaderProgram entry ("frag:line_hooks.glsl+FILE"). program() builds its
+// stages with it; `pathlet validate` compiles each hook alone with it.
+std::string hook_entry(const std::string& file, const std::string& role);
 
 // Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl (an enum
 // parameter's params.index("colormap") is the constant).
