@@ -23,4 +23,11 @@ float oit_depth(uvec4 n) { return uintBitsToFloat(n.y); }
 uint oit_next(uvec4 n) { return n.z; }
 uint oit_line(uvec4 n) { return n.w; }
 
+// The order every list resolve composites in: depth, then line id, then colour. Identical keys
+// are identical fragments, so the picture never depends on the order the rasteriser appended
+// them (and depth peeling, which peels by depth and line id, agrees: passes/depth_peel).
+bool oit_nearer(float d, uint id, uint c, float d2, uint id2, uint c2) {
+    return d < d2 || (d == d2 && (id < id2 || (id == id2 && c < c2)));
+}
+
 #endif

@@ -14,7 +14,9 @@
 // order; the buffer grows ahead when a frame used more than kGrowAt of it, to kHeadroom x that
 // count. A frame that still overflowed lost fragments: it is logged, counted (stats) and
 // reported as incomplete (PassContext::frame_incomplete) when its count arrives, or at the end of
-// the run (finish() waits for the counts in flight), and the buffer grows for the next.
+// the run (finish() waits for the counts in flight), and the buffer grows for the next. With
+// never_drop (exact references) every frame is handled as the first: it waits for its count, is
+// redrawn after growing, and fails at the cap instead of dropping.
 #include <pathlet/lines.hpp>
 #include <pathlet/gpu_readback.hpp>
 #include <pathlet/oit.hpp>
@@ -79,9 +81,9 @@ public:
         const size_t pixels = size_t(size.x) * size_t(size.y);
         const size_t wanted = std::min(max_nodes_, size_t(std::ceil(ctx.params().f("nodes_per_pixel") * double(pixels))));
         size_t capacity = ensure_capacity(ctx, std::max<size_t>(wanted, 1));
-        if (!counts_) {
+        if (!counts_ || ctx.params().b("never_drop")) {
             first_frame(ctx, capacity);
-            counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));
+            if (!counts_) counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));
             return;
         }
         // Every count that arrived, in frame order, each tagged with the capacity its frame had.
@@ -157,6 +159,16 @@ private:
             count = draw_and_count(ctx, capacity);
         }
         const size_t dropped = count > capacity ? count - capacity : 0;
+        if (dropped && ctx.params().b("never_drop")) {  // a reference frame is whole or not made
+            char msg[320];
+            std::snprintf(msg, sizeof msg,
+                          "never_drop: the frame needs %u nodes (%.1f MiB), more than the cap of %zu nodes "
+                          "(max_memory_mb = %g, or GL_MAX_TEXTURE_BUFFER_SIZE); raise max_memory_mb, shorten the "
+                          "window or render smaller",
+                          count, double(count) * double(oit::kNodeBytes) / 1048576.0, capacity,
+                          double(ctx.params().f("max_memory_mb")));
+            throw std::runtime_error(msg);
+        }
         if (dropped) {
             report_cap(ctx, ctx.frame_index(), dropped, count, capacity);
             ctx.frame_incomplete(ctx.frame_index());
@@ -238,7 +250,10 @@ pathlet::PassTypeInfo fill_list_type() {
                      "initial node capacity per output pixel (16 bytes a node); grown automatically on overflow")
         .param_float("max_memory_mb", 1024.0, 0.01, 65536.0,
                      "cap for the node buffer in MiB (also capped by GL_MAX_TEXTURE_BUFFER_SIZE nodes); a frame "
-                     "that needs more drops fragments and says so")
+                     "that needs more drops fragments and says so (with never_drop: fails, naming it)")
+        .param_bool("never_drop", false,
+                    "every frame waits for its node count and, on overflow, grows the buffer and draws again; a frame "
+                    "over max_memory_mb fails instead of dropping (exact references: a wait per frame)")
         .input_texture("heads", "r32ui", "per-pixel list heads, cleared by clear_list")
         .input_buffer("counter", "node counter, cleared by clear_list")
         .output_texture("coverage", "depth24",

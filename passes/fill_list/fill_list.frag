@@ -9,6 +9,7 @@
 #define LINE_STAGE_FRAGMENT
 #include "line_common.glsl"
 #include "oit_list.glsl"
+#include "oit_fragment.glsl"
 #ifdef WRITE_GBUFFER
 #include "line_gbuffer_out.glsl"
 #endif
@@ -32,17 +33,17 @@ void main() {
     // shader (it writes gl_FragDepth), so a fragment the G-buffer hides still becomes a node.
     line_gbuffer_write(f, c.rgb);
 #endif
-    // Analytic edge coverage: the rim's last pixel is as opaque as the share of it the quad covers.
-    float a = c.a * clamp(0.5 + f.rim_px, 0.0, 1.0);
+    vec4 frag = oit_fragment_rgba(f, c);  // halo tint, and the opacity times the edge coverage
+    float a = frag.a;
 #ifdef WRITE_GBUFFER
-    if (a < 0.5 / 255.0) return;  // invisible: no node (its G-buffer values stay)
+    if (!oit_fragment_visible(a)) return;  // invisible: no node (its G-buffer values stay)
 #else
-    if (a < 0.5 / 255.0) discard;  // invisible: no node
+    if (!oit_fragment_visible(a)) discard;  // invisible: no node
 #endif
     uint i = atomicAdd(oit_count, 1u);
     if (i >= uint(u_capacity)) return;  // overflow: counted, fill_list re-renders the frame with more room
     uint next = imageAtomicExchange(u_heads, ivec2(gl_FragCoord.xy), i);
-    imageStore(u_nodes, int(i), oit_pack(vec4(line_halo_tint(c.rgb, f), a), f.depth01, next, f.point.line_id));
+    imageStore(u_nodes, int(i), oit_pack(frag, f.depth01, next, f.point.line_id));
 #ifdef WRITE_RECORDS
     imageStore(u_records, int(i), line_volume_ao_pack(f.normal, f.tangent, line_volume_ao_w(f), c.a));
 #endif

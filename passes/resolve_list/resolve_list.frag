@@ -38,12 +38,6 @@ layout(location = FRONT_LOCATION + 1) out int o_front_line_id;
 layout(location = FRONT_LOCATION + 2) out float o_front_ao;
 #endif
 
-// Order by depth, then line id, then colour: identical keys are identical nodes, so the result
-// never depends on the order the rasteriser appended them.
-bool nearer(float d, uint id, uint c, float d2, uint id2, uint c2) {
-    return d < d2 || (d == d2 && (id < id2 || (id == id2 && c < c2)));
-}
-
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     uint i = imageLoad(u_heads, p).r;
@@ -80,9 +74,9 @@ void main() {
         i = oit_next(node);
         float d = oit_depth(node);
         uint id = oit_line(node);
-        if (n == K && !nearer(d, id, node.x, dep[K - 1], lid[K - 1], col[K - 1])) continue;  // beyond the K kept
+        if (n == K && !oit_nearer(d, id, node.x, dep[K - 1], lid[K - 1], col[K - 1])) continue;  // beyond the K kept
         int j = n < K ? n++ : K - 1;
-        for (; j > 0 && nearer(d, id, node.x, dep[j - 1], lid[j - 1], col[j - 1]); --j) {
+        for (; j > 0 && oit_nearer(d, id, node.x, dep[j - 1], lid[j - 1], col[j - 1]); --j) {
             dep[j] = dep[j - 1];
             col[j] = col[j - 1];
             lid[j] = lid[j - 1];

@@ -1,0 +1,135 @@
+// depth_peel: exact transparency by depth peeling (Everitt 2001), the second exact technique
+// beside the lists' resolve_exact (issue 42), so each checks the other. Per layer the lines are
+// drawn twice through the line kit: the peel finds, per pixel, the nearest fragment after the
+// last one peeled in the lists' order (depth, then line id); the select draw picks the smallest
+// line id at that depth and its colour; a fullscreen composite puts the layer under what is
+// there (front to back). A pixel stops taking layers once its transmittance is below
+// min_transmittance, and the peeling stops when a layer is empty: an occlusion query per layer,
+// read back at once (the pass waits for the GPU every layer: a reference, not a frame loop).
+// More than max_layers layers is an error naming the parameter, never a silent cut.
+#include <pathlet/lines.hpp>
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+namespace lines = pathlet::lines;
+
+constexpr double kMaxLineIds = 16777216.0;  // 2^24: ids stored exactly as depth (depth_peel.frag)
+enum Phase { kCoverage = 0, kPeel = 1, kSelect = 2 };
+
+class DepthPeel : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        if (double(ctx.scene().cpu().lines.lines.size()) > kMaxLineIds)
+            throw std::runtime_error("depth_peel orders ties by line id through a depth buffer: at most 2^24 lines "
+                                     "(the scene has " + std::to_string(ctx.scene().cpu().lines.lines.size()) + ")");
+        lines_ = &lines::program(ctx, {"depth_peel.frag"}, lines::hooks(ctx));
+        composite_ = &ctx.program({"fullscreen.vert", "depth_peel_composite.frag"});
+        drawer_.set_occlusion_culling(false);  // its depth buffers hold peels, not what hides what
+        if (!query_) glCreateQueries(GL_ANY_SAMPLES_PASSED, 1, &query_);
+    }
+
+    ~DepthPeel() override {
+        if (query_) glDeleteQueries(1, &query_);
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const pathlet::Params& p = ctx.params();
+        const glm::vec4 none(ctx.params().v3("background"), 0.0f), start(0.0f, 0.0f, 0.0f, 1.0f);
+        const GLuint no_key[2] = {floatBitsOf(-1.0f), 0u};  // before every fragment (depths are >= 0)
+        glClearTexImage(ctx.texture("color").id, 0, GL_RGBA, GL_FLOAT, &none.x);
+        glClearTexImage(ctx.texture("accum").id, 0, GL_RGBA, GL_FLOAT, &start.x);
+        glClearTexImage(ctx.texture("key").id, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, no_key);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        if (ctx.connected("coverage")) {  // where visible fragments are, as fill_list's coverage
+            ctx.bind_framebuffer({}, "coverage");
+            lines::clear_depth(1.0f);
+            draw_lines(ctx, kCoverage);
+        }
+        const glm::ivec4 rect = lines::screen_rect(ctx, 2);
+        const int max_layers = p.i("max_layers");
+        int layers = 0;
+        for (;; ++layers) {
+            ctx.bind_framebuffer({}, "peel_depth");
+            lines::clear_depth(1.0f);
+            glBeginQuery(GL_ANY_SAMPLES_PASSED, query_);
+            draw_lines(ctx, kPeel);
+            glEndQuery(GL_ANY_SAMPLES_PASSED);
+            GLuint any = 0;
+            glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &any);  // waits: the peeling's only read-back
+            if (!any) break;
+            if (layers == max_layers)
+                throw std::runtime_error("more than max_layers = " + std::to_string(max_layers) +
+                                         " layers to peel (pixels still let light through); raise max_layers or "
+                                         "min_transmittance");
+            ctx.bind_framebuffer({"layer"}, "layer_id");
+            lines::clear_color(0, glm::vec4(0.0f));
+            lines::clear_depth(1.0f);
+            draw_lines(ctx, kSelect);
+            ctx.bind_framebuffer({"color"}, "");
+            composite_->use();
+            {
+                lines::ScopedScissor clip(rect);
+                ctx.draw_fullscreen();
+            }
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
+        ctx.stat("layers", double(layers));
+    }
+
+private:
+    static GLuint floatBitsOf(float f) {
+        GLuint u;
+        static_assert(sizeof u == sizeof f);
+        std::memcpy(&u, &f, sizeof u);
+        return u;
+    }
+
+    void draw_lines(pathlet::PassContext& ctx, Phase phase) {
+        // The coverage keeps the last visible fragment's depth, as fill_list's does (ALWAYS).
+        drawer_.set_depth_func(phase == kCoverage ? GL_ALWAYS : GL_LESS);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        lines_->use();
+        lines_->set("u_phase", int(phase));
+        drawer_.draw(ctx, *lines_);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    }
+
+    pathlet::ShaderProgram* lines_ = nullptr;
+    pathlet::ShaderProgram* composite_ = nullptr;
+    lines::Drawer drawer_;
+    GLuint query_ = 0;
+};
+
+pathlet::PassTypeInfo depth_peel_type() {
+    pathlet::PassTypeBuilder b("depth_peel",
+                               "exact transparency by depth peeling (issue 42): layer by layer in the lists' order "
+                               "(depth, ties by line id) until a layer is empty or every pixel's transmittance is "
+                               "below min_transmittance; the colour hook's opacity (by default the kit's end fade)");
+    lines::declare_params(b, {.color = "fade_opacity.frag"})
+        .param_int("max_layers", 4096, 1, 1000000,
+                   "most layers peeled in a frame; a frame that needs more fails, naming this (never a silent cut)")
+        .param_float("min_transmittance", 1e-4, 0.0, 1.0,
+                     "a pixel whose light left through its layers is below this takes no more layers (as "
+                     "resolve_exact stops)")
+        .output_texture("color", "rgba8", "composited colour over `background`, alpha 1 where any fragment landed")
+        .output_texture("coverage", "depth24",
+                        "depth < 1 where a visible fragment landed (for the wall): fill_list's coverage, the same "
+                        "fragments in the same order with depth test ALWAYS",
+                        {.optional = true})
+        .internal_texture("peel_depth", "depth32f", "this layer's linear depth per pixel (the peel draw's depth)")
+        .internal_texture("layer_id", "depth32f", "line id / 2^24 of this layer's fragment (the select draw's depth)")
+        .internal_texture("layer", "rgba8", "this layer's fragment colour, as the lists store it")
+        .internal_texture("accum", "rgba32f", "colour composited so far (premultiplied) and the transmittance left")
+        .internal_texture("key", "rg32ui", "the last peeled fragment per pixel: depth bits and line id");
+    return b.make<DepthPeel>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("depth_peel", { sink->add(depth_peel_type()); })

@@ -1,0 +1,90 @@
+// resolve_exact: the exact reference of the list techniques (issue 42). Like resolve_list it
+// composites each pixel's linked list front to back, but with every fragment: no cap on the
+// list (a bounded block sorted in rounds, resolve_exact.frag), termination only when the
+// transmittance left is below min_transmittance (1e-4), ties by line id. With fill_list's
+// never_drop the lists hold every fragment, so the picture is exact by construction; the
+// pass reports what it needed (peak list length, sorting rounds).
+#include <pathlet/gpu_readback.hpp>
+#include <pathlet/lines.hpp>
+#include <pathlet/oit.hpp>
+#include <pathlet/plugin.hpp>
+#include <pathlet/shader.hpp>
+
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+class ResolveExact : public pathlet::Pass {
+public:
+    void setup(pathlet::PassContext& ctx) override {
+        std::vector<std::string> defines = pathlet::oit::defines();
+        defines.push_back("SORT_BLOCK " + std::to_string(ctx.params().i("sort_block")));
+        prog_ = &ctx.program({"fullscreen.vert", "resolve_exact.frag"}, defines);
+    }
+
+    void execute(pathlet::PassContext& ctx) override {
+        const GLuint nodes = ctx.buffer_texture("nodes", pathlet::oit::kNodeFormat);  // fill_list may have grown it
+        const GLuint stats = ctx.buffer("stats").id;
+        const GLuint zero[4] = {0, 0, 0, 0};
+        glNamedBufferSubData(stats, 0, sizeof(zero), zero);
+        const bool skip_empty = ctx.connected("coverage");
+        if (skip_empty) {  // background everywhere first; the shader then runs on covered pixels only
+            const glm::vec4 bg(ctx.params().v3("background"), 0.0f);
+            glClearTexImage(ctx.texture("color").id, 0, GL_RGBA, GL_FLOAT, &bg.x);
+        }
+        ctx.bind_framebuffer({"color"}, skip_empty ? "coverage" : "");
+        prog_->bind_texture("u_nodes", nodes);
+        prog_->use();  // heads, stats and the parameters by declaration
+        if (skip_empty) {
+            pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
+            ctx.draw_fullscreen_on_geometry(*prog_);
+        } else {
+            ctx.draw_fullscreen();
+        }
+        // The statistics through a fenced copy, read a frame or two late on a GPU: no wait.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (!stats_) stats_ = std::make_unique<pathlet::GpuReadback>(sizeof stats_seen_);
+        if (const void* p = stats_->poll_newest()) std::memcpy(stats_seen_, p, sizeof stats_seen_);
+        stats_->copy(stats, 0);
+        ctx.stat("peak_nodes_per_pixel", double(stats_seen_[0]));
+        ctx.stat("peak_sort_rounds", double(stats_seen_[1]));
+        ctx.stat("truncated_pixels", double(stats_seen_[2]));
+    }
+
+private:
+    pathlet::ShaderProgram* prog_ = nullptr;
+    std::unique_ptr<pathlet::GpuReadback> stats_;
+    GLuint stats_seen_[3] = {0, 0, 0};  // the newest statistics known
+};
+
+pathlet::PassTypeInfo resolve_exact_type() {
+    return pathlet::PassTypeBuilder(
+               "resolve_exact",
+               "the exact list resolve (issue 42): every fragment of each pixel's list, sorted by depth (ties by line "
+               "id, then colour) in rounds of a bounded block, composited front to back until the transmittance left "
+               "is below min_transmittance; no fragment cap")
+        .param_int("sort_block", 16, 1, 64,
+                   "fragments sorted per round in a local array (registers); a longer list takes more rounds, "
+                   "never fewer fragments")
+        .param_float("min_transmittance", 1e-4, 0.0, 1.0,
+                     "stop compositing a pixel when the light left through its fragments is below this (0: every "
+                     "fragment)")
+        .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
+        .input_texture("heads", "r32ui", "per-pixel list heads (fill_list)")
+        .input_buffer("nodes", "list nodes (fill_list; with never_drop it holds every fragment)")
+        .input_texture("coverage", "depth24",
+                       "fill_list's coverage depth: when connected, pixels without fragments are only cleared",
+                       {.optional = true})
+        .internal_buffer("stats",
+                         "peak list length, peak sorting rounds and pixels cut by the corrupt-list guard (uints)",
+                         {.bytes = 16})
+        .output_texture("color", "rgba8", "composited colour, alpha 1 where any fragment landed")
+        .make<ResolveExact>();
+}
+
+}  // namespace
+
+PATHLET_PLUGIN("resolve_exact", { sink->add(resolve_exact_type()); })

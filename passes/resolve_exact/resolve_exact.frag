@@ -1,0 +1,94 @@
+#version 450 core
+// resolve_exact: every fragment of the pixel's list, composited front to back in the lists'
+// order (oit_nearer: depth, line id, colour; the node index last, so the order is total) until
+// the transmittance left is below u_min_transmittance. No fragment cap: the list is sorted in
+// rounds of a bounded local array (a block of K), as register/block sorts do (Knowles et al.
+// 2014): each round walks the list and keeps, by insertion, the K nearest fragments after the
+// last one composited; a round that finds fewer than K was the last. Cost: rounds x length,
+// registers: K, independent of the depth complexity.
+#include "oit_list.glsl"
+
+#define K SORT_BLOCK
+#define MAX_WALK 0x1000000u  // only a corrupt (cyclic) list is longer: then the pixel is counted
+
+layout(r32ui) uniform readonly uimage2D u_heads;  // the pins, by declaration
+uniform usamplerBuffer u_nodes;                   // the pass's view of the `nodes` buffer
+layout(std430, binding = STATS_BINDING) buffer OitExactStats { uint peak_nodes; uint peak_rounds; uint cut_pixels; };
+uniform float u_min_transmittance;
+uniform vec3 u_background;
+
+layout(location = 0) out vec4 o_color;
+
+// (d, id, c, n) comes before (d2, id2, c2, n2): the lists' order, made total by the node index.
+bool before(float d, uint id, uint c, uint n, float d2, uint id2, uint c2, uint n2) {
+    return oit_nearer(d, id, c, d2, id2, c2) || (d == d2 && id == id2 && c == c2 && n < n2);
+}
+
+void main() {
+    uint head = imageLoad(u_heads, ivec2(gl_FragCoord.xy)).r;
+    if (head == OIT_END) {  // no fragment: the background
+        o_color = vec4(u_background, 0.0);
+        return;
+    }
+    float dep[K];
+    uint lid[K], col[K], idx[K];
+    dep[K - 1] = 1.0, lid[K - 1] = 0u, col[K - 1] = 0u, idx[K - 1] = 0u;  // only the first n are read
+    // The last fragment composited (the round's threshold); none before the first round.
+    bool first = true;
+    float pd = 0.0;
+    uint pid = 0u, pc = 0u, pn = 0u;
+    vec3 rgb = vec3(0.0);
+    float t = 1.0;  // transmittance left
+    uint len = 0u, rounds = 0u;
+    bool cut = false, finished = false;
+    for (;;) {
+        int n = 0;
+        uint walked = 0u;
+        for (uint i = head; i != OIT_END;) {
+            if (++walked > MAX_WALK) {
+                cut = true;
+                break;
+            }
+            uvec4 node = texelFetch(u_nodes, int(i));
+            uint self = i;
+            i = oit_next(node);
+            float d = oit_depth(node);
+            uint id = oit_line(node), c = node.x;
+            if (!first && !before(pd, pid, pc, pn, d, id, c, self)) continue;  // composited in an earlier round
+            if (n == K && !before(d, id, c, self, dep[K - 1], lid[K - 1], col[K - 1], idx[K - 1])) continue;
+            int j = n < K ? n++ : K - 1;
+            for (; j > 0 && before(d, id, c, self, dep[j - 1], lid[j - 1], col[j - 1], idx[j - 1]); --j) {
+                dep[j] = dep[j - 1];
+                lid[j] = lid[j - 1];
+                col[j] = col[j - 1];
+                idx[j] = idx[j - 1];
+            }
+            dep[j] = d;
+            lid[j] = id;
+            col[j] = c;
+            idx[j] = self;
+        }
+        if (rounds == 0u) len = walked;
+        else if (walked != len) cut = true;  // the same list walked short: a loop cut by the driver
+        ++rounds;
+        for (int k = 0; k < n && t >= u_min_transmittance; ++k) {
+            vec4 c = unpackUnorm4x8(col[k]);
+            rgb += t * c.a * c.rgb;
+            t *= 1.0 - c.a;
+        }
+        if (t < u_min_transmittance || n < K || cut) {  // finished, every fragment seen, or a corrupt list
+            finished = true;
+            break;
+        }
+        first = false;
+        pd = dep[K - 1], pid = lid[K - 1], pc = col[K - 1], pn = idx[K - 1];
+    }
+    // Plain reads first: the peaks only grow, so most pixels need no (contended) atomic.
+    if (len > peak_nodes) atomicMax(peak_nodes, len);
+    if (rounds > peak_rounds) atomicMax(peak_rounds, rounds);
+    // Software rasterizers bound a shader's loops (llvmpipe: 65535 iterations) and leave them
+    // without a word: a pixel whose loop ended otherwise than above is counted, never hidden.
+    if (cut || !finished) atomicAdd(cut_pixels, 1u);
+    // Alpha 1 wherever a fragment landed, as resolve_list's colour.
+    o_color = vec4(rgb + t * u_background, 1.0);
+}
