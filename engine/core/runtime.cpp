@@ -94,7 +94,8 @@ std::vector<std::string> Runtime::user_sets(std::vector<std::string> sets) {
         if (eq == std::string::npos) continue;
         const std::string lhs = set.substr(0, eq), value = set.substr(eq + 1);
         const size_t dot = lhs.rfind('.');
-        if (dot == std::string::npos || !hooks.count(lhs.substr(dot + 1)) || value.empty()) continue;
+        // PASS.color_hook=FILE, or a graph variable named as a hook parameter (color_hook=FILE).
+        if (!hooks.count(dot == std::string::npos ? lhs : lhs.substr(dot + 1)) || value.empty()) continue;
         const fs::path p = fs::absolute(value).lexically_normal();
         std::error_code ec;
         const bool is_path = value.find('/') != std::string::npos;

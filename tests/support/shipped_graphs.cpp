@@ -1,6 +1,9 @@
 #include "shipped_graphs.hpp"
 
+#include <pathlet/gl.hpp>
+
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -9,7 +12,8 @@ namespace pathlet {
 namespace {
 // Pass types that draw the scene's lines through the line kit.
 bool is_line_pass(const std::string& type) {
-    for (const char* t : {"gbuffer", "isl", "geometric_fade", "fill_list", "fade_core"})
+    for (const char* t : {"gbuffer", "isl", "geometric_fade", "fill_list", "fade_core", "wboit_accum", "mboit_moments",
+                          "mboit_accum", "mlab_bucket", "mlab_blend"})
         if (type == t) return true;
     return false;
 }
@@ -21,6 +25,24 @@ bool ShippedGraph::has_variable(const std::string& v) const {
 
 bool ShippedGraph::has_pass(const std::string& pass_name) const {
     return std::any_of(file.passes.begin(), file.passes.end(), [&](const PassDecl& p) { return p.name == pass_name; });
+}
+
+std::string ShippedGraph::unsupported_here() const {
+    static const struct {
+        const char* type;
+        const char* extension;
+    } needs[] = {{"mlab_blend", "GL_ARB_fragment_shader_interlock"}};
+    for (const auto& n : needs) {
+        if (std::none_of(file.passes.begin(), file.passes.end(), [&](const PassDecl& p) { return p.type == n.type; }))
+            continue;
+        GLint count = 0;
+        glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+        bool found = false;
+        for (GLint i = 0; i < count && !found; ++i)
+            found = std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))), n.extension) == 0;
+        if (!found) return name + " needs " + n.extension + ", which this driver lacks (passes/mlab_blend/tests checks its error)";
+    }
+    return "";
 }
 
 std::string ShippedGraph::variable_default(const std::string& v) const {

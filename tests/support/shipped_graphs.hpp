@@ -17,6 +17,11 @@ struct ShippedGraph {
     bool has_variable(const std::string& v) const;
     bool has_pass(const std::string& pass_name) const;
     std::string variable_default(const std::string& v) const;  // JSON text, "" when absent
+    // Why this graph cannot run on the current GL context ("" when it can): a pass that needs an
+    // extension the driver lacks (mlab_blend: GL_ARB_fragment_shader_interlock, which llvmpipe
+    // has not). Tests that render every graph skip it, saying so; passes/mlab_blend/tests checks
+    // its setup error. Needs a current context.
+    std::string unsupported_here() const;
 };
 
 // Sorted by name; read once per process.

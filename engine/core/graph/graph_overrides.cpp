@@ -23,6 +23,38 @@ bool parse_bool(const std::string& s, bool& out) {
     return false;
 }
 
+// A variable that pass hook parameters take ("color_hook": "$color_hook" in every variant2_*
+// graph) swaps each of those hooks as --set PASS.color_hook would: a path the user gave is on the
+// search path, a hook that cannot be used is this set's error, and the replaced hook's
+// parameters are dropped (graph_hook_swap.cpp). The variable already holds the new value.
+template <class Error>
+bool set_hook_variable(GraphFile& g, const std::string& var, const json& old, const std::string& text,
+                       const std::string& set, const PassRegistry& reg, const std::set<std::string>& user_files,
+                       const Error& error) {
+    for (PassDecl& p : g.passes) {
+        const PassTypeInfo* t = reg.find(p.type);
+        if (!t) continue;
+        for (const ParamDecl& d : t->params) {
+            if (d.hook.empty() || !p.params.contains(d.name) || !is_variable_ref(p.params[d.name]) ||
+                p.params[d.name].get<std::string>().substr(1) != var)
+                continue;
+            if (std::filesystem::path(text).is_absolute() && user_files.count(text) &&
+                std::find(g.dirs.begin(), g.dirs.end(), text) == g.dirs.end())
+                g.dirs.push_back(text);
+            PassDecl::ParamsChange change{"--set " + set, p.params, {d.name}};
+            change.before[d.name] = old;
+            std::string bad, bad_at;
+            pass_instance_type(g, p, *t, bad, bad_at);
+            if (!bad.empty()) {
+                error(p.pointer + "/params/" + pointer_escape(d.name), bad);
+                return false;
+            }
+            swap_hook_params(g, p, *t, change);
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
@@ -50,8 +82,13 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
                 continue;
             }
             json out;
-            if (std::string err = it->decl.coerce_text(text, out); !err.empty()) error(it->pointer, "variable '" + lhs + "' " + err);
-            else it->value = out;
+            if (std::string err = it->decl.coerce_text(text, out); !err.empty()) {
+                error(it->pointer, "variable '" + lhs + "' " + err);
+                continue;
+            }
+            const json old = it->value;
+            it->value = out;
+            if (!set_hook_variable(g, lhs, old, text, set, reg, user_files, error)) it->value = old;
             continue;
         }
 

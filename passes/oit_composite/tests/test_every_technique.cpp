@@ -1,0 +1,75 @@
+// One fade hook through every transparency technique (issue 42, item 3): every shipped
+// variant2_* graph has the variable color_hook, and `--set color_hook=FILE` (here through
+// Runtime::user_sets, as the command line does it) puts the same GLSL file into each. A hook
+// that paints every line blue (no colour map of the default graphs makes blue) must turn each
+// technique's picture blue where lines are, and the end fade's parameters it does not declare
+// are dropped, not refused. Graphs the driver cannot run (MLAB without fragment shader
+// interlock) are skipped, saying so.
+#include "frame_capture.hpp"
+#include "shipped_graphs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+using namespace pathlet;
+
+namespace {
+
+// Shares of the covered (non-white) pixels that are blue-dominated, and how many are covered.
+struct Blue {
+    double share = 0.0;
+    size_t covered = 0;
+};
+Blue blue_share(const Image& im) {
+    Blue b;
+    size_t blue = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x) {
+            const float r = im.at(x, y, 0), g = im.at(x, y, 1), bl = im.at(x, y, 2);
+            if (r + g + bl > 2.9f) continue;
+            ++b.covered;
+            blue += bl > r + 0.15f && bl > g + 0.15f;
+        }
+    b.share = b.covered ? double(blue) / double(b.covered) : 0.0;
+    return b;
+}
+
+}  // namespace
+
+TEST(EveryTechnique, OneFadeHookGoesIntoEveryVariant2Graph) {
+    const std::string hook = test_scratch_dir("pathlet_every_technique") + "/blue_fade.glsl";
+    std::ofstream(hook) << "// every line blue, half as opaque past the middle of its pathlet\n"
+                           "vec4 line_color_hook(vec4 rgba, LinePoint p) {\n"
+                           "    return vec4(0.1, 0.2, 1.0, rgba.a * (p.age < 0.5 ? 1.0 : 0.5));\n"
+                           "}\n";
+    Runtime& rt = test_runtime();
+    size_t graphs = 0;
+    for (const ShippedGraph& g : shipped_graphs()) {
+        if (g.name.rfind("variant2_", 0) != 0) continue;
+        SCOPED_TRACE(g.name);
+        ASSERT_TRUE(g.has_variable("color_hook")) << g.name << " has no variable color_hook";
+        if (const std::string why = g.unsupported_here(); !why.empty()) {
+            std::printf("skipped: %s\n", why.c_str());
+            continue;
+        }
+        RenderOptions opt;
+        opt.graph_path = g.path;
+        opt.size = {160, 120};
+        opt.time.start = 6.0;
+        opt.sets = {"line_width=1.2", "window=3", "overlay=false", "wall=false"};
+        const Frame plain = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        opt.sets.push_back("color_hook=" + hook);
+        opt.sets = rt.user_sets(opt.sets);
+        const Frame hooked = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        const Blue before = blue_share(plain["final"]), after = blue_share(hooked["final"]);
+        std::printf("%-24s blue share of covered pixels: %.3f without the hook, %.3f with it (%zu covered)\n",
+                    g.name.c_str(), before.share, after.share, after.covered);
+        EXPECT_GT(after.covered, 500u) << "the hooked picture shows lines";
+        EXPECT_LT(before.share, 0.02) << "the default colour map is not blue";
+        EXPECT_GT(after.share, 0.85) << "the hook's blue in " << g.name;
+        ++graphs;
+    }
+    EXPECT_GE(graphs, 7u) << "variant2_oit, _ao, _vao, wboit, wboit_ao, mboit, mboit_ao at least";
+}
