@@ -449,17 +449,17 @@ void ViewLoop::present() {
     ++shown_;
 }
 
-// Per-pass timing bars: medians of the last 30 frames, then the profiler starts afresh
-// (bounded memory over an afternoon).
+// Per-pass timing bars: medians of the last 30 frames whose GPU times are in, then those are
+// forgotten (bounded memory over an afternoon). Never waits for the GPU: only ready timer
+// queries are collected, and frames still in flight carry over to the next 30.
 void ViewLoop::update_timing() {
     Profiler& prof = session_.profiler();
-    if (prof.frames_recorded() < 30) return;
-    prof.flush();
+    prof.collect_ready();
+    if (prof.frames_timed() < 30) return;
     info_.timing.clear();
     for (const auto& p : prof.passes()) info_.timing.push_back({p.name, p.gpu_ms.median});
     info_.backend = rt_.gl->renderer() + " - " + prof.backend_description();
-    prof.init(prof.backend(), rt_.gl->renderer());
-    prof.set_warmup_frames(0);
+    prof.forget_timed();
 }
 
 void ViewLoop::update_title() {

@@ -1,9 +1,11 @@
 // Recording side of the profiler: frame/pass boundaries and the two GPU timing backends.
 #include "profiler/profiler.hpp"
 
+#include <pathlet/gpu_fence.hpp>
 #include <pathlet/pass.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 namespace pathlet {
@@ -71,8 +73,7 @@ void Profiler::init(TimingBackend requested, const std::string& gl_renderer) {
 
     epoch_ms_ = clock_ ? clock_() : steady_ms();
     if (backend_ == TimingBackend::GlTimestamp) {
-        description_ = "GL_TIMESTAMP queries (read when available, up to " + std::to_string(kMaxInFlight) +
-                       " frames in flight)";
+        description_ = "GL_TIMESTAMP queries (read when available)";
         if (!software.empty())
             description_ += " (WARNING " + software + ": timer queries do not measure rasterization)";
         // Places GPU stamps on the profiler clock, so both trace tracks share one timeline.
@@ -124,16 +125,22 @@ void Profiler::begin_frame(uint64_t index) {
 
     if (backend_ == TimingBackend::GlTimestamp) {
         collect_ready();
-        InFlight slot;
-        if (in_flight_.size() >= kMaxInFlight) {  // GPU hopelessly behind: give up on the oldest
-            slot.queries = std::move(in_flight_.front().queries);
+        if (in_flight_.size() >= kMaxInFlight) {  // GPU hopelessly behind: wait, never drop
+            if (!said_behind_)
+                std::fprintf(stderr, "profiler: the GPU's timer queries are %zu frames behind; waiting for the oldest "
+                                     "(no frame is dropped)\n", in_flight_.size());
+            said_behind_ = true;
+            try_collect(in_flight_.front(), true);
+            spare_sets_.push_back(std::move(in_flight_.front().queries));
             in_flight_.pop_front();
-            ++dropped_;
-        } else if (!spare_sets_.empty()) {
+        }
+        InFlight slot;
+        if (!spare_sets_.empty()) {
             slot.queries = std::move(spare_sets_.back());
             spare_sets_.pop_back();
         }
         slot.frame = frames_.size();
+        slot.issued = gpu_frame();
         in_flight_.push_back(std::move(slot));
         current().frame_begin = stamp();
     } else {
@@ -206,13 +213,9 @@ void Profiler::add_stat(const std::string& pass, const std::string& name, double
 }
 
 bool Profiler::try_collect(InFlight& slot, bool wait) {
-    if (!wait) {
-        for (size_t i = 0; i < slot.used; ++i) {
-            GLint available = 0;
-            glGetQueryObjectiv(slot.queries[i], GL_QUERY_RESULT_AVAILABLE, &available);
-            if (!available) return false;
-        }
-    }
+    if (!wait)
+        for (size_t i = 0; i < slot.used; ++i)
+            if (!query_ready(slot.queries[i], slot.issued)) return false;
     std::vector<GLuint64> ns(slot.used, 0);
     for (size_t i = 0; i < slot.used; ++i) glGetQueryObjectui64v(slot.queries[i], GL_QUERY_RESULT, &ns[i]);
 
@@ -243,6 +246,20 @@ void Profiler::collect_ready() {
         spare_sets_.push_back(std::move(in_flight_.front().queries));
         in_flight_.pop_front();
     }
+}
+
+size_t Profiler::frames_timed() const {
+    if (!in_flight_.empty()) return in_flight_.front().frame;
+    return frames_.size() - (in_frame_ ? 1 : 0);
+}
+
+void Profiler::forget_timed() {
+    const size_t n = frames_timed();
+    frames_.erase(frames_.begin(), frames_.begin() + long(n));
+    for (InFlight& slot : in_flight_) slot.frame -= n;
+    stats_.clear();
+    wall_end_ms_ = 0;
+    wall_end_frames_ = 0;
 }
 
 void Profiler::flush() {

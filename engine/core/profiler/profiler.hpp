@@ -1,6 +1,7 @@
 // Per-pass frame profiler. Two ways to time GPU work (ecosystem notes §3):
 //  * GlTimestamp: glQueryCounter(GL_TIMESTAMP) at every boundary, a ring of in-flight frames,
-//    results read only once available (never stalls). Right for real GPUs.
+//    results read only once available (pathlet/gpu_fence.hpp's query_ready: never stalls, and
+//    late under PATHLET_SIMULATE_GPU_LATENCY). No frame is dropped. Right for real GPUs.
 //  * CpuFinish: glFinish() then the steady clock at every boundary. Serialises the pipeline,
 //    but it is the only honest number on llvmpipe, whose timer queries miss rasterisation.
 // CPU-side (command recording) time per pass is recorded either way, without any finish.
@@ -68,6 +69,13 @@ public:
 
     // Collects GPU results of frames still in flight, waiting for them (GlTimestamp only).
     void flush();
+    // Collects the GPU results that are ready, never waiting (the viewer's live timing).
+    void collect_ready();
+    // Frames recorded whose GPU results are in (all of them with CpuFinish).
+    size_t frames_timed() const;
+    // Forgets the frames whose results are in (their records and the stats); frames still in
+    // flight keep their queries and are collected later. The viewer's window of recent frames.
+    void forget_timed();
     // flush() and delete the query objects; the context must still be current.
     void release_gl();
 
@@ -76,7 +84,7 @@ public:
     Stats frame_ms() const;                  // whole frame, backend-measured
     Stats frame_cpu_ms() const;              // whole frame, CPU wall clock
     size_t frames_recorded() const { return frames_.size(); }
-    size_t gpu_frames_dropped() const { return dropped_; }  // > 64 frames behind, or implausible values
+    size_t gpu_frames_dropped() const { return dropped_; }  // implausible values (never for being behind)
     // Frames per second of wall clock over the measured frames: from the first one's start on the
     // CPU to the moment flush() saw the last one done (on the GPU too). What a user waits for;
     // with a CPU-bound loop far below 1000 / median frame time. 0 before flush().
@@ -119,12 +127,14 @@ private:
         std::vector<GLuint> queries;
         size_t used = 0;
         size_t frame = 0;                                // index into frames_
+        uint64_t issued = 0;                             // pathlet::gpu_frame() when its queries were issued
         size_t frame_begin = 0, frame_end = 0;           // query positions
         std::vector<std::array<size_t, 2>> pass_stamps;  // per pass sample: begin, end
     };
-    // Collected query sets are recycled, so a GPU keeping up cycles through 3-4 of them.
-    // Headless there is no swap to throttle the CPU: when the GPU lags the ring grows rather
-    // than stall (or drop, as a fixed ring of 4 did on llvmpipe), up to kMaxInFlight frames.
+    // Collected query sets are recycled, so a GPU keeping up cycles through 3-4 of them. The
+    // executor keeps at most PATHLET_FRAMES_IN_FLIGHT frames in flight; results may still come
+    // later (a GPU's bursts, the simulated latency), so the ring grows. Beyond kMaxInFlight the
+    // oldest frame is waited for (and that said once), never dropped.
     static constexpr size_t kMaxInFlight = 64;
 
     double now() const;
@@ -133,7 +143,6 @@ private:
     size_t stamp();                    // glQueryCounter for GlTimestamp; returns query position
     bool try_collect(InFlight& slot, bool wait);  // true when collected
     InFlight& current() { return in_flight_.back(); }
-    void collect_ready();
     bool measured(const FrameRecord& f) const { return !f.warmup; }
 
     TimingBackend backend_ = TimingBackend::CpuFinish;
@@ -158,6 +167,7 @@ private:
     std::deque<InFlight> in_flight_;               // oldest first
     std::vector<std::vector<GLuint>> spare_sets_;  // query objects of collected frames, for reuse
     size_t dropped_ = 0;
+    bool said_behind_ = false;
 
     struct StatAccum {
         double sum = 0;
