@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <set>
 
 using nlohmann::json;
@@ -189,9 +191,9 @@ TEST(BenchCli, CompareFlagsASlowdownAndPassesNoise) {
     ASSERT_EQ(r.code, 0) << r.err;
     const fs::path base = d / "base" / "results.json";
     const json j = json::parse(slurp(base));
-    // Every time scaled: 2x is a regression; 1.4x (re-runs on this shared machine drift that far)
-    // and 0.5x are not.
-    auto scaled = [&](double s, const std::string& name) {
+    // Every time scaled (summaries and frames; the machine's calibration as it was): 2x is a
+    // regression; 1.4x (re-runs on this shared machine drift that far) and 0.5x are not.
+    auto scaled = [&](double s, const std::string& name, double machine = 1.0) {
         json c = j;
         auto scale = [&](json& st) {
             for (const char* k : {"median", "p5", "p95", "mean", "min", "max"}) st[k] = st[k].get<double>() * s;
@@ -199,9 +201,17 @@ TEST(BenchCli, CompareFlagsASlowdownAndPassesNoise) {
         for (json& run : c["runs"]) {
             scale(run["frame"]["gpu_ms"]);
             for (json& p : run["passes"]) scale(p["gpu_ms"]);
+            for (json& f : run["frames"]) {
+                if (f["gpu_ms"].is_number()) f["gpu_ms"] = f["gpu_ms"].get<double>() * s;
+                for (auto& [pass, ms] : f["passes"].items()) ms = ms.get<double>() * s;
+            }
+            run["calibration"]["median_ms"] = run["calibration"]["median_ms"].get<double>() * machine;
         }
+        c["calibration"]["median_ms"] = c["calibration"]["median_ms"].get<double>() * machine;
         return write(d / name, c.dump());
     };
+    ASSERT_TRUE(j.contains("calibration") && j["calibration"]["median_ms"].get<double>() > 0) << j.dump().substr(0, 400);
+    ASSERT_TRUE(j["runs"][0]["calibration"]["before_ms"].size() == 3u) << "timed beside every run";
     r = pathlet_cli("bench --compare " + base.string() + " --against " + scaled(2.0, "slow.json").string());
     EXPECT_EQ(r.code, 1) << r.out << r.err;
     EXPECT_NE(r.out.find("REGRESSION"), std::string::npos) << r.out;
@@ -220,6 +230,14 @@ TEST(BenchCli, CompareFlagsASlowdownAndPassesNoise) {
     EXPECT_EQ(r.code, 1) << r.out;
     r = pathlet_cli("bench --compare " + base.string() + " --against " + (d / "slow.json").string() + " --threshold 1.5");
     EXPECT_EQ(r.code, 0) << r.out;
+    // A machine that ran everything 2x slower (its calibration too) is not a regression, and
+    // the comparison says how much slower the machine was; 4x on that machine is.
+    r = pathlet_cli("bench --compare " + base.string() + " --against " + scaled(2.0, "busy.json", 2.0).string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("this machine ran 100 % slower now"), std::string::npos) << r.out;
+    r = pathlet_cli("bench --compare " + base.string() + " --against " + scaled(4.0, "busy_slow.json", 2.0).string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("+100.0%"), std::string::npos) << r.out;
     // Nothing in common: an error, not a silent pass.
     json other = j;
     for (json& run : other["runs"]) run["meta"]["label"] = "other";
@@ -343,6 +361,13 @@ exec "$@"
     json j = json::parse(slurp(d / "o" / "results.json"));
     EXPECT_FALSE(j["complete"].get<bool>());
     EXPECT_LT(j["runs"].size(), 8u);
+    // The files hold exactly the runs the command says it finished.
+    size_t said = 0, of = 0;
+    ASSERT_EQ(std::sscanf(r.err.c_str() + std::min(r.err.find("interrupted after"), r.err.size()),
+                          "interrupted after %zu of %zu runs", &said, &of), 2) << r.err;
+    EXPECT_EQ(of, 8u);
+    EXPECT_GE(said, 1u) << "the signal came after the first run";
+    EXPECT_EQ(j["runs"].size(), said) << r.err;
     EXPECT_EQ(count(slurp(d / "o" / "summary.csv"), ",(frame),"), j["runs"].size());
     for (const auto& e : fs::directory_iterator(d / "o"))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "no temp left: " << e.path();
