@@ -125,7 +125,7 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
         }
         results.add_run(k, run, g, opt.graph_path, opt.sets, scene->source, r.profiler, image);
         results.set_complete(++done == mine);
-        const RunDone finished{run, r.profiler, *scene, done, mine};
+        const RunDone finished{run, r.profiler, *scene, done, mine, r.incomplete_frames, r.frames};
         if (hooks.on_report) hooks.on_report(results.doc(), &finished);
     }
     return results.doc();

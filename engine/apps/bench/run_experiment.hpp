@@ -31,6 +31,8 @@ struct RunDone {
     const Profiler& profiler;
     const Scene& scene;
     size_t done, mine;  // runs of this shard finished, and in all
+    const std::vector<size_t>& incomplete_frames;  // the run's (RenderResult::incomplete_frames)
+    size_t frames;                                 // the run's frames
 };
 
 struct ExperimentHooks {

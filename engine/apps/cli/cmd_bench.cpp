@@ -267,6 +267,9 @@ struct Finished {
     std::vector<bench::SummaryRow> summary;
     std::string source;
     size_t done = 0;
+    // Frames a pass could not draw whole: per run with any, "3, 4, 11"; and the frames of all runs.
+    std::vector<std::pair<size_t, std::string>> incomplete;
+    size_t incomplete_count = 0, frames = 0;
 };
 
 Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
@@ -299,6 +302,13 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
         f.summary.push_back(row);
         f.source = run->scene.source;
         f.done = run->done;
+        f.frames += run->frames;
+        if (!run->incomplete_frames.empty()) {
+            std::string list;
+            for (size_t i : run->incomplete_frames) list += (list.empty() ? "" : ", ") + std::to_string(i);
+            f.incomplete.emplace_back(run->done - 1, list);
+            f.incomplete_count += run->incomplete_frames.size();
+        }
         progress.update(f.done, run->run.label);
     };
     bench::run_experiment(rt, p.e, p.how, hooks);
@@ -315,6 +325,12 @@ int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& 
     if (p.from_file) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", p.out_dir.c_str());
     if (o.plots && !write_plots(p.out_dir)) return 1;
     if (!o.report.empty()) std::fprintf(stderr, "wrote %s.csv and %s.json\n", o.report.c_str(), o.report.c_str());
+    if (f.incomplete_count) {  // as render's last line; with several runs, each run's frames named
+        std::string list;
+        for (const auto& [run, frames] : f.incomplete)
+            list += (list.empty() ? "" : "; ") + (f.summary.size() > 1 ? "run " + std::to_string(run) + ": " : "") + frames;
+        std::fprintf(stderr, "incomplete frames: %zu of %zu (%s)\n", f.incomplete_count, f.frames, list.c_str());
+    }
     if (g_interrupted) {
         std::fprintf(stderr, "interrupted after %zu of %zu runs; the files hold the finished runs\n", f.done, p.mine);
         return 130;

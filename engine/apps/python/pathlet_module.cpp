@@ -356,6 +356,7 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
     std::vector<Readback> rbs;
     json timings;
     size_t frames = 0;
+    std::string incomplete;  // the command's last line, when a pass dropped anything
     {
         py::gil_scoped_release nogil;
         timings = GlThread::get().call([&](Runtime& rt) {
@@ -376,11 +377,14 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
                 }
                 ++frames;
             });
+            incomplete = incomplete_frames_line(r);
             return r.profiler.to_json({{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()},
                                        {"size", {opt.size.x, opt.size.y}}, {"frames", r.frames},
-                                       {"data", scene->source}, {"variables", r.compiled.variables}});
+                                       {"data", scene->source}, {"variables", r.compiled.variables},
+                                       {"incomplete_frames", r.incomplete_frames}});
         });
     }
+    if (!incomplete.empty()) std::fprintf(stderr, "%s\n", incomplete.c_str());
     py::dict arrays;
     for (auto& rb : rbs) arrays[py::str(rb.name)] = frames_array(rb, frames, single && frames == 1);
     return py::make_tuple(arrays, py::cast(opt.time.times()), from_json(timings));
