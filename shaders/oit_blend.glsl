@@ -1,18 +1,12 @@
-// What a blend-only or bounded-memory OIT pass (wboit_accum, mboit_moments, mboit_accum,
-// mlab_bucket, mlab_blend) takes from a line fragment, said once: the colour after the colour
-// hook and the halo, and the opacity of the hook times the rim's analytic edge coverage, as
-// fill_list stores them in its nodes; the log-depth warp of moment-based OIT; and, with CORE_AO,
-// the opaque core's AO applied per fragment as resolve_list applies it (variant2_*_ao).
+// What the blend-only and bounded-memory OIT passes (wboit_accum, mboit_moments, mboit_accum,
+// mlab_bucket, mlab_blend) share beyond oit_fragment.glsl's fragment: the log-depth warp of
+// moment-based OIT and, with CORE_AO, the opaque core's AO applied per fragment as resolve_list
+// applies it (variant2_*_ao). Include after line_common.glsl.
 #ifndef PATHLET_OIT_BLEND_GLSL
 #define PATHLET_OIT_BLEND_GLSL
 
-// Fragments below this opacity are dropped, as fill_list drops them (no node).
-const float kOitMinAlpha = 0.5 / 255.0;
-
-// Straight colour and opacity of a fragment whose colour hook returned `hooked`.
-vec4 oit_fragment_rgba(LineFrag f, vec4 hooked) {
-    return vec4(line_halo_tint(hooked.rgb, f), hooked.a * clamp(0.5 + f.rim_px, 0.0, 1.0));
-}
+// The fragment every technique composites (oit_fragment_rgba, oit_fragment_visible).
+#include "oit_fragment.glsl"
 
 // The view depth of the fragment (the halo's push-back included) warped logarithmically to
 // [-1, 1] between the camera's near and far planes: moments of a log depth spend their

@@ -20,7 +20,7 @@ layout(location = 0) out vec4 o_accum;
 void main() {
     LineFrag f = line_fragment();
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
-    if (c.a < kOitMinAlpha) discard;
+    if (!oit_fragment_visible(c.a)) discard;
     ivec2 p = ivec2(gl_FragCoord.xy);
     float t = mboit_transmittance(texelFetch(u_b0, p, 0).r, texelFetch(u_moments, p, 0), oit_log_depth(f), u_bias, u_overestimation);
     float a = mboit_alpha(c.a);

@@ -14,7 +14,7 @@ layout(location = 1) out vec4 o_moments;
 void main() {
     LineFrag f = line_fragment();
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
-    if (c.a < kOitMinAlpha) discard;  // invisible: no contribution (and no coverage)
+    if (!oit_fragment_visible(c.a)) discard;  // invisible: no contribution (and no coverage)
     float a = mboit_absorbance_of(c.a);
     float z = oit_log_depth(f), z2 = z * z, z4 = z2 * z2;
     o_b0 = vec4(a);

@@ -18,7 +18,7 @@ uniform int u_width;
 void main() {
     LineFrag f = line_fragment();
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
-    if (c.a < kOitMinAlpha) discard;
+    if (!oit_fragment_visible(c.a)) discard;
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec2 bucket = texelFetch(u_bucket, p, 0).rg;
     float d = f.depth01;

@@ -15,6 +15,6 @@ layout(location = 0) out vec4 o_bucket;
 void main() {
     LineFrag f = line_fragment();
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
-    if (c.a < kOitMinAlpha) discard;
+    if (!oit_fragment_visible(c.a)) discard;
     o_bucket = vec4(c.a > u_lower_opacity ? f.depth01 : 1.0, c.a >= u_upper_opacity ? f.depth01 : 1.0, 1.0, 1.0);
 }

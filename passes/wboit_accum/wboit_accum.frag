@@ -29,7 +29,7 @@ float wboit_weight(float a, float d) {
 void main() {
     LineFrag f = line_fragment();
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
-    if (c.a < kOitMinAlpha) discard;  // invisible: no contribution (and no coverage)
+    if (!oit_fragment_visible(c.a)) discard;  // invisible: no contribution (and no coverage)
     c.rgb = oit_core_ao(c.rgb, f);
     float w = wboit_weight(c.a, f.depth01);
     o_accum = vec4(c.rgb * c.a, c.a) * w;
