@@ -46,6 +46,30 @@ TEST(Executor, GlErrorIsReportedWithThePass) {
     EXPECT_TRUE(runtime().gl->take_errors().empty());
 }
 
+TEST(Executor, AGlErrorNoCallbackReportedIsCaughtAtTheEndOfTheRun) {
+    // glGetError is not asked every frame (a round trip to a threaded driver): an error that
+    // reaches no debug callback (a driver that reports none) is caught once, at the end.
+    render_error(test_file("graphs/glerror.json"));  // the fixture plugin loaded
+    RenderOptions o;  // nothing read back in the frames (read_texture would clear glGetError)
+    o.graph_path = test_file("graphs/glerror.json");
+    o.size = {32, 32};
+    o.warmup = 0;
+    o.write_images = false;
+    o.quiet = true;
+    o.time = {0, 2, 1};
+    glDebugMessageControl(GL_DEBUG_SOURCE_API, GL_DEBUG_TYPE_ERROR, GL_DONT_CARE, 0, nullptr, GL_FALSE);
+    std::string msg;
+    try {
+        render(runtime(), tiny_scene(), o);
+    } catch (const std::exception& e) {
+        msg = e.what();
+    }
+    glDebugMessageControl(GL_DEBUG_SOURCE_API, GL_DEBUG_TYPE_ERROR, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+    EXPECT_NE(msg.find("caused OpenGL errors in the run"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("glGetError 0x05"), std::string::npos) << msg;
+    EXPECT_TRUE(runtime().gl->take_errors().empty());
+}
+
 TEST(Executor, ShaderCompileErrorNamesFileAndLine) {
     std::string msg = render_error(test_file("graphs/broken_shader.json"));
     EXPECT_NE(msg.find("pass 'pattern'"), std::string::npos) << msg;
