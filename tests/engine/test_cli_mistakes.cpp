@@ -74,6 +74,17 @@ TEST(CliMistakes, AnUnknownCommandOrPassTypeGetsTheClosestName) {
     EXPECT_EQ(r.err.rfind("error: no pass type 'lineoa' (did you mean 'lineao'?)", 0), 0u) << r.err;
 }
 
+TEST(CliMistakes, AUsageErrorNamesItsCommandOnce) {
+    for (const std::string cmd : {"render", "bench isl", "graph isl", "quality"}) {
+        SCOPED_TRACE(cmd);
+        const std::string name = cmd.substr(0, cmd.find(' '));
+        const CliRun r = pathlet_cli(cmd + " --size 160by90");
+        EXPECT_EQ(r.code, 2);
+        EXPECT_EQ(r.err.rfind("pathlet " + name + ": --size '160by90'", 0), 0u) << r.err;
+        EXPECT_EQ(r.err.find(name + ": " + name + ":"), std::string::npos) << r.err;
+    }
+}
+
 TEST(CliMistakes, ATimeOutsideTheDataIsAnErrorNamingItsSpanUnlessEmptyFramesAreAskedFor) {
     const std::string d = user_dir("time");
     for (const std::string t : {"50", "2:50:10", "-3"}) {

@@ -212,7 +212,7 @@ Plan make_plan(const BenchOptions& o, const std::vector<std::string>& argv) {
         for (const auto& s : e.sizes) parse_size(s);
         if (!e.time.empty()) parse_time_range(e.time);
     } catch (const std::invalid_argument& ex) {
-        throw UsageError(e.name + ": " + ex.what());
+        throw UsageError(ex.what());  // "--size '...'": main() puts "pathlet bench: " before it, once
     }
     if (o.shard) p.how.shard = *o.shard;
     p.how.timing = o.timing;
