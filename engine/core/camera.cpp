@@ -22,6 +22,61 @@ void finish_camera(Camera& c, const Bounds& b, glm::ivec2 size) {
     c.proj = glm::perspective(glm::radians(c.fov_y_deg), aspect, c.near_plane, c.far_plane);
 }
 
+namespace {
+// The distance from the box's centre at which its 8 corners, seen along `v` with `up` up, fill
+// `fill` of the frame's limiting dimension. A corner q (from the centre) lies at depth d + q.v
+// with offsets q.right, q.up: it fits when d >= |offset| / (tan * fill) - q.v.
+float fit_distance(const std::vector<glm::vec3>& points, glm::vec3 center, glm::vec3 v, glm::vec3 up, float tan_v,
+                   float aspect, float fill) {
+    const glm::vec3 right = glm::normalize(glm::cross(v, up)), cam_up = glm::cross(right, v);
+    const float tv = tan_v * fill, th = tv * aspect;
+    float dist = 0.0f;
+    for (const glm::vec3& p : points) {
+        const glm::vec3 q = p - center;
+        const float depth = glm::dot(q, v);
+        dist = std::max({dist, std::fabs(glm::dot(q, right)) / th - depth, std::fabs(glm::dot(q, cam_up)) / tv - depth});
+    }
+    return dist;
+}
+
+std::vector<glm::vec3> corners(const Bounds& b) {
+    std::vector<glm::vec3> c;
+    for (int i = 0; i < 8; ++i) c.emplace_back(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
+    return c;
+}
+}  // namespace
+
+std::vector<glm::vec3> framing_points(const Scene& scene, size_t max_points) {
+    std::vector<glm::vec3> all;
+    auto add = [&](const std::vector<glm::vec3>& v) {
+        for (const glm::vec3& p : v)
+            if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) all.push_back(p);
+    };
+    add(scene.lines.position);
+    if (scene.mesh) add(scene.mesh->position);
+    if (all.size() <= max_points || max_points == 0) return all;
+    std::vector<glm::vec3> some;  // an even subsample, with the box's extremes kept exactly
+    const Bounds b = scene.bounds();
+    const size_t step = (all.size() + max_points - 1) / max_points;
+    for (size_t i = 0; i < all.size(); ++i)
+        if (i % step == 0 || glm::any(glm::equal(all[i], b.lo)) || glm::any(glm::equal(all[i], b.hi))) some.push_back(all[i]);
+    return some;
+}
+
+Camera frame_points(const Bounds& b, const std::vector<glm::vec3>& points, glm::ivec2 size, float fov_y_deg) {
+    Camera c = frame_bounds(b, size, fov_y_deg);
+    if (points.empty() || !b.valid()) return c;
+    const glm::vec3 v = glm::normalize(c.target - c.eye);
+    const float aspect = size.y > 0 ? float(size.x) / float(size.y) : 1.0f, tan_v = std::tan(glm::radians(fov_y_deg) * 0.5f);
+    // The sphere leaves a compact data set (in a box near a cube) small in the frame: where the
+    // data would fill less than 80 % of the limiting dimension, move in until it fills 92 %.
+    if (glm::length(c.eye - c.target) > fit_distance(points, c.target, v, c.up, tan_v, aspect, 0.8f)) {
+        c.eye = c.target - v * fit_distance(points, c.target, v, c.up, tan_v, aspect, 0.92f);
+        finish_camera(c, b, size);
+    }
+    return c;
+}
+
 Camera frame_bounds(const Bounds& b0, glm::ivec2 size, float fov_y_deg) {
     Bounds b = b0.valid() ? b0 : Bounds{glm::vec3(-1), glm::vec3(1)};
     glm::vec3 ext = b.hi - b.lo;
@@ -45,6 +100,26 @@ Camera frame_bounds(const Bounds& b0, glm::ivec2 size, float fov_y_deg) {
     float half_h = std::atan(std::tan(half_v) * aspect);
     float dist = r / std::sin(std::min(half_v, half_h)) * 0.92f;
     c.eye = c.target - view_dir * dist;
+    finish_camera(c, b, size);
+    return c;
+}
+
+Camera frame_bounds_orbit(const Bounds& b0, const std::vector<glm::vec3>& points0, glm::ivec2 size, float fov_y_deg,
+                          float fill) {
+    const Bounds b = b0.valid() ? b0 : Bounds{glm::vec3(-1), glm::vec3(1)};
+    const std::vector<glm::vec3> points = points0.empty() ? corners(b) : points0;
+    Camera c = frame_bounds(b, size, fov_y_deg);
+    const glm::vec3 up = glm::normalize(c.up);
+    const glm::vec3 dir0 = glm::normalize(c.target - c.eye);
+    const float aspect = size.y > 0 ? float(size.x) / float(size.y) : 1.0f;
+    const float tan_v = std::tan(glm::radians(fov_y_deg) * 0.5f);
+    // Every 1 degree of the turn; between two the box moves less than the margin `fill` leaves.
+    float dist = 0.0f;
+    for (int deg = 0; deg < 360; ++deg) {
+        const glm::mat4 rot = glm::rotate(glm::mat4(1.0f), glm::radians(float(deg)), up);
+        dist = std::max(dist, fit_distance(points, c.target, glm::vec3(rot * glm::vec4(dir0, 0.0f)), up, tan_v, aspect, fill));
+    }
+    c.eye = c.target - dir0 * dist;
     finish_camera(c, b, size);
     return c;
 }

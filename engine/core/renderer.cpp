@@ -185,7 +185,10 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
     CameraPath path;
     if (!opt.camera_path.empty()) path = CameraPath::load(opt.camera_path);
     Bounds bounds = scene.bounds();
-    Camera base = frame_bounds(bounds, render_size);
+    // The data fills the frame; an orbit stands back far enough that it stays whole at every
+    // angle of the turn.
+    Camera base = opt.orbit_deg_per_s != 0.0 ? frame_bounds_orbit(bounds, framing_points(scene, 20000), render_size)
+                                             : frame_points(bounds, framing_points(scene), render_size);
     auto camera_at = [&](double t) {
         Camera c = opt.camera_path.empty() ? base : path.at(t, bounds, render_size);
         if (opt.orbit_deg_per_s != 0.0) c = orbit(c, opt.orbit_deg_per_s, t, bounds, render_size);
@@ -228,6 +231,8 @@ RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
     size_t done = 0;
     std::set<std::string> cleaned;  // output folders cleared of stale temps
     std::map<uint64_t, size_t> frame_number;  // executor index -> output frame number (not warm-up)
+    // 0 done before the first frame: a caller's clock (the progress line's rate) starts with the loop.
+    if (opt.on_frames) opt.on_frames(0, 0, count);
     for (size_t i = 0; i < times.size(); ++i) {
         if (!mine(i)) continue;
         if (stopped()) {

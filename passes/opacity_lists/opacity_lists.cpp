@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -48,6 +49,42 @@ constexpr uint32_t kResolveGroup = 8;    // opacity_resolve's work group is 8 x 
 std::atomic<uint32_t> g_generation{1};
 
 enum class Importance { speed, array, hook };
+
+bool iequals(const std::string& a, const std::string& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
+// importance=array's per-point field: any array `pathlet info` lists. The importers keep the
+// file's other arrays in Pathlines::arrays (a vector as its magnitude); the arrays they read as
+// the pathlines' velocity and time (by the names they look for) are the lines' own: velocity as
+// its magnitude (the speed), time as it is.
+std::vector<float> importance_field(const pathlet::Pathlines& pl, const std::string& name) {
+    const pathlet::PointArray* a = pl.array(name);
+    for (size_t i = 0; !a && i < pl.arrays.size(); ++i)
+        if (iequals(pl.arrays[i].name, name)) a = &pl.arrays[i];
+    if (a) return a->values;
+    const bool has_velocity = pl.velocity.size() == pl.position.size() && !pl.timeless;
+    const bool has_time = pl.time.size() == pl.position.size() && !pl.timeless;
+    std::vector<float> field;
+    if (has_velocity)
+        for (const char* v : {"velocity", "vel", "u", "v", "speed"})
+            if (iequals(name, v)) {
+                field.resize(pl.position.size());
+                for (size_t i = 0; i < field.size(); ++i) field[i] = glm::length(pl.velocity[i]);
+                return field;
+            }
+    if (has_time)
+        for (const char* t : {"time", "t", "integrationtime"})
+            if (iequals(name, t)) return pl.time;
+    std::string names;
+    if (has_velocity) names = "velocity (as its magnitude)";
+    if (has_time) names += std::string(names.empty() ? "" : ", ") + "time";
+    for (const auto& x : pl.arrays) names += (names.empty() ? "" : ", ") + x.name;
+    throw std::runtime_error("importance_array '" + name + "': the data has no point array of that name; its arrays: " +
+                             (names.empty() ? std::string("none") : names));
+}
 
 size_t list_words(glm::ivec2 size, size_t nodes) {
     const size_t heads = (kListHeaderWords + size_t(size.x) * size_t(size.y) + 3) & ~size_t(3);
@@ -82,15 +119,7 @@ public:
                 for (size_t i = 0; i < field.size(); ++i) field[i] = glm::length(pl.velocity[i]);
                 if (automatic) lo = ctx.scene().speed_min(), hi = ctx.scene().speed_max();
             } else {
-                const std::string name = p.s("importance_array");
-                const pathlet::PointArray* a = pl.array(name);
-                if (!a) {
-                    std::string names;
-                    for (const auto& x : pl.arrays) names += (names.empty() ? "" : ", ") + x.name;
-                    throw std::runtime_error("importance_array '" + name + "': the data has no point array of that "
-                                             "name; its arrays: " + (names.empty() ? std::string("none") : names));
-                }
-                field = a->values;
+                field = importance_field(pl, p.s("importance_array"));
                 if (automatic) lo = oo::quantile(field, 0.01), hi = oo::quantile(field, 0.99);
             }
             if (!(hi > lo)) hi = lo + 1.0f;  // a constant field: everything as important

@@ -1,8 +1,9 @@
 // overlay: what the study shows in every figure, drawn over the finished image: the animation
 // time ("t = 4.50 s", top left; no unit where the data's time has none) and the speed legend
-// (the colour bar with its range and the data's velocity unit, right edge, vertically
-// centred; for the direction colour map an x/y/z key), sized from the output height so it is
-// crisp and equally large at any resolution. Streamlines without time get neither clock nor
+// (the colour bar with 3-5 round values on ticks and the data's velocity unit, beside the data:
+// right of where its box projects, centred on it, inside the frame; for the direction colour
+// map an x/y/z key at the right edge), sized from the output height so it is crisp and
+// legible from 270 lines to 4K. Streamlines without time get neither clock nor
 // speed. Text is rasterised with FreeType (text_raster.*); with show = false the image passes
 // through bit for bit. Labels never cost the picture: a font that is missing or cannot be used
 // gives one warning and the built-in font (builtin_font.cpp).
@@ -19,6 +20,8 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -27,6 +30,11 @@ struct Label {
     GLuint tex = 0;
     int width = 0, height = 0, ascent = 0;
     int tex_w = 0, tex_h = 0;
+    Label() = default;
+    Label(const Label&) = delete;
+    Label& operator=(const Label&) = delete;
+    Label(Label&& o) noexcept
+        : tex(std::exchange(o.tex, 0u)), width(o.width), height(o.height), ascent(o.ascent), tex_w(o.tex_w), tex_h(o.tex_h) {}
     ~Label() {
         if (tex) glDeleteTextures(1, &tex);
     }
@@ -68,13 +76,40 @@ std::unique_ptr<overlay::TextRaster> make_raster(const std::string& font, int px
     }
 }
 
-// Legend numbers with as many decimals as their size needs (1250, 12.5, 0.35).
-std::string format_speed(float v) {
+// The legend's ticks: 3 to 5 round values ("nice numbers": 1, 2, 2.5 or 5 times a power of ten)
+// inside [lo, hi], and the decimals their step needs.
+struct Ticks {
+    std::vector<double> values;
+    int decimals = 0;
+};
+Ticks nice_ticks(double lo, double hi) {
+    Ticks t;
+    if (!(hi > lo)) return t;
+    const double e0 = std::floor(std::log10((hi - lo) / 5.0));
+    for (int e = int(e0) - 1; e <= int(e0) + 2 && t.values.empty(); ++e)
+        for (double m : {1.0, 2.0, 2.5, 5.0}) {
+            const double step = m * std::pow(10.0, e);
+            const double first = std::ceil(lo / step - 1e-9), last = std::floor(hi / step + 1e-9);
+            const int n = int(last - first) + 1;
+            if (n > 5) continue;
+            if (n < 3) break;  // steps only grow from here: fewer ticks still
+            for (double k = first; k <= last; k += 1.0) t.values.push_back(k * step);
+            t.decimals = std::max(0, -int(std::floor(std::log10(step) + 1e-9)) + (m == 2.5 ? 1 : 0));
+            break;
+        }
+    if (t.values.empty()) t.values = {lo, hi}, t.decimals = hi - lo >= 10 ? 0 : 2;  // no 3..5 split: the ends
+    return t;
+}
+std::string format_tick(double v, int decimals) {
     char buf[32];
-    const float a = std::fabs(v);
-    std::snprintf(buf, sizeof buf, a >= 100.0f ? "%.0f" : a >= 10.0f ? "%.1f" : "%.2f", double(v));
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, std::fabs(v) < 1e-12 ? 0.0 : v);
     return buf;
 }
+
+// The text height at an output `lines` tall: 13 px at 270 lines, growing with the square root
+// of the height (18 at 540, 26 at 1080, 37 at 2160): legible on a small figure, not shouting
+// on a 4K frame.
+int auto_font_px(float lines) { return std::clamp(int(std::lround(13.0f * std::sqrt(lines / 270.0f))), 12, 200); }
 
 class Overlay : public pathlet::Pass {
 public:
@@ -82,9 +117,9 @@ public:
         prog_ = &ctx.program({"overlay.vert", "overlay.frag"});
         if (!vao_) glCreateVertexArrays(1, &vao_);  // core profile: a draw needs a bound VAO
         const pathlet::Params& p = ctx.params();
-        const int h = ctx.output_size().y;
-        font_px_ = p.f("font_px") > 0.0f ? int(std::lround(p.f("font_px") * ctx.pixel_scale()))
-                                          : std::clamp(int(std::lround(float(h) / 28.0f)), 10, 400);
+        const float scale = std::max(ctx.pixel_scale(), 1.0f);  // --ssaa N: drawn at N x, filtered down
+        const float lines = float(ctx.output_size().y) / scale;
+        font_px_ = int(std::lround((p.f("font_px") > 0.0f ? p.f("font_px") : float(auto_font_px(lines))) * scale));
         const std::string font = p.s("font").empty() ? overlay::default_font() : p.s("font");
         if (!raster_ || font != font_file_ || raster_->pixel_size() != font_px_) {
             raster_ = make_raster(font, font_px_);
@@ -102,8 +137,14 @@ public:
         legend_max_ = smax;
         direction_ = p.s("colormap") == "direction";
         timeless_ = scene.cpu().lines.timeless;  // streamlines: no time, no speed to show
-        max_label_.set(raster_->render(format_speed(smax)));
-        min_label_.set(raster_->render(format_speed(smin)));
+        const Ticks ticks = nice_ticks(smin, smax);
+        ticks_.clear();
+        tick_labels_.clear();
+        tick_labels_.resize(ticks.values.size());
+        for (size_t i = 0; i < ticks.values.size(); ++i) {
+            ticks_.push_back(float(ticks.values[i]));
+            tick_labels_[i].set(raster_->render(format_tick(ticks.values[i], ticks.decimals)));
+        }
         unit_label_.set(raster_->render(direction_ ? "direction" : unit.empty() ? "speed" : "speed (" + unit + ")"));
         for (int k = 0; k < 3; ++k) axis_label_[k].set(raster_->render(std::string(1, char('x' + k))));
     }
@@ -148,19 +189,32 @@ public:
                 text(axis_label_[k], x0 - gap - float(axis_label_[k].width), y + 0.5f * sw - 0.6f * float(axis_label_[k].ascent), ink);
             }
         } else if (p.b("legend") && !timeless_) {
-            // A vertical bar at the right edge, centred: the data sits in the middle at the
-            // default framing. Numbers to its left, right-aligned; the unit above.
-            const float bar_w = std::round(0.55f * float(font_px_));
-            const float bar_h = std::round(std::max(0.28f * float(size.y), 4.0f * float(font_px_)));
-            const float x1 = float(size.x) - m, x0 = x1 - bar_w;
-            const float y0 = std::round(0.5f * (float(size.y) - bar_h)), y1 = y0 + bar_h;
+            // A vertical bar beside the data (right of where its box projects, centred on it),
+            // kept inside the frame: round values on ticks to its right, the unit above.
+            const float f = float(font_px_);
+            const float bar_w = std::round(0.6f * f), tick = std::round(0.3f * f), gap = std::round(0.3f * f);
+            const float bar_h = std::round(std::max(0.32f * float(size.y), 6.0f * f));
+            float labels_w = 0.0f;
+            for (const Label& l : tick_labels_) labels_w = std::max(labels_w, float(l.width));
+            const float block_w = std::max(bar_w + tick + gap + labels_w, float(unit_label_.width));
+            const glm::vec4 data = data_rect(ctx);  // x0, y0, x1, y1 from the top left
+            const float x0 = std::round(std::clamp(data.z + 1.5f * f, m, float(size.x) - m - block_w));
+            const float x1 = x0 + bar_w;
+            const float top = m + float(unit_label_.height) + gap;  // room for the title
+            const float y0 = std::round(std::clamp(0.5f * (data.y + data.w) - 0.5f * bar_h, top,
+                                                   std::max(top, float(size.y) - m - bar_h)));
+            const float y1 = y0 + bar_h;
             solid(x0 - 1, y0 - 1, x1 + 1, y1 + 1, ink);  // a 1 px frame
             prog_->set("u_mode", 1);
             rect(x0, y0, x1, y1);
-            const float gap = std::round(0.3f * float(font_px_));
-            text(max_label_, x0 - gap - float(max_label_.width), y0 - float(max_label_.ascent) * 0.35f, ink);
-            text(min_label_, x0 - gap - float(min_label_.width), y1 - float(min_label_.ascent) * 0.65f, ink);
-            text(unit_label_, std::min(x1 - float(unit_label_.width), x0), y0 - gap - float(unit_label_.height), ink);
+            for (size_t i = 0; i < ticks_.size(); ++i) {
+                const float y = std::round(y1 - (ticks_[i] - legend_min_) / (legend_max_ - legend_min_) * bar_h);
+                solid(x1, y - 0.5f * std::max(1.0f, std::round(f / 14.0f)), x1 + tick,
+                      y + 0.5f * std::max(1.0f, std::round(f / 14.0f)), ink);
+                const Label& l = tick_labels_[i];
+                text(l, x1 + tick + gap, y - 0.5f * float(l.ascent), ink);
+            }
+            text(unit_label_, x0, y0 - gap - float(unit_label_.height), ink);
         }
     }
 
@@ -169,6 +223,41 @@ public:
     }
 
 private:
+    // Where the data can be this frame, in pixels from the top left: the projection of the
+    // cylinder about the camera's up axis (through the box's centre) that holds the box. It
+    // hugs a vessel seen side on and stays put while an orbit turns the data about that axis,
+    // so the legend beside it does not slide. The middle of the frame where it reaches behind
+    // the camera.
+    static glm::vec4 data_rect(const pathlet::PassContext& ctx) {
+        const glm::vec2 size(ctx.output_size());
+        const glm::vec4 middle(0.5f * size.x, 0.5f * size.y, 0.5f * size.x, 0.5f * size.y);
+        const pathlet::Bounds b = ctx.scene().bounds();
+        const pathlet::Camera& cam = ctx.camera();
+        if (!b.valid() || !(glm::length(cam.up) > 0.0f)) return middle;
+        const glm::vec3 up = glm::normalize(cam.up), center = b.center();
+        float radius = 0.0f, h0 = 1e30f, h1 = -1e30f;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 q = glm::vec3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z) - center;
+            const float h = glm::dot(q, up);
+            radius = std::max(radius, glm::length(q - h * up));
+            h0 = std::min(h0, h), h1 = std::max(h1, h);
+        }
+        const glm::vec3 a = std::fabs(up.x) < 0.9f ? glm::normalize(glm::cross(up, glm::vec3(1, 0, 0)))
+                                                   : glm::normalize(glm::cross(up, glm::vec3(0, 1, 0)));
+        const glm::vec3 a2 = glm::cross(up, a);
+        const glm::mat4 clip = cam.proj * cam.view;
+        glm::vec2 mn(1e30f), mx(-1e30f);
+        for (int k = 0; k < 48; ++k) {  // the two rims, every 7.5 degrees
+            const float t = float(k % 24) * (2.0f * 3.14159265f / 24.0f);
+            const glm::vec3 p = center + radius * (std::cos(t) * a + std::sin(t) * a2) + (k < 24 ? h0 : h1) * up;
+            const glm::vec4 c = clip * glm::vec4(p, 1.0f);
+            if (!(c.w > 1e-6f)) return middle;
+            const glm::vec2 px((c.x / c.w * 0.5f + 0.5f) * size.x, (0.5f - c.y / c.w * 0.5f) * size.y);
+            mn = glm::min(mn, px);
+            mx = glm::max(mx, px);
+        }
+        return {mn, mx};
+    }
     void rect(float x0, float y0, float x1, float y1) {
         prog_->set("u_rect", glm::vec4(x0, y0, x1, y1));
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
@@ -193,7 +282,9 @@ private:
     std::unique_ptr<overlay::TextRaster> raster_;
     std::string font_file_;
     int font_px_ = 0;
-    Label time_label_, max_label_, min_label_, unit_label_, axis_label_[3];
+    Label time_label_, unit_label_, axis_label_[3];
+    std::vector<Label> tick_labels_;  // grows only on setup; Label owns its texture
+    std::vector<float> ticks_;
     std::string time_unit_;
     float legend_min_ = 0, legend_max_ = 0;
     bool direction_ = false, timeless_ = false;
@@ -207,7 +298,7 @@ PATHLET_PLUGIN("overlay", {
                                        "finished image, as in the study's figures")
                   .param_bool("show", true, "draw the overlay (false: the image passes through unchanged)")
                   .param_bool("time", true, "the time label \"t = 4.50 s\", top left")
-                  .param_bool("legend", true, "the speed colour bar with its range and unit, right edge")
+                  .param_bool("legend", true, "the speed colour bar with 3-5 round values and the unit, beside the data")
                   .param_enum("colormap", "green_red", pathlet::lines::colormaps(),
                               "the line pass's colour map (tie both to one graph variable); direction shows an x/y/z key")
                   .param_float("speed_min", 0.0, -1.0, 1e9,
@@ -217,7 +308,9 @@ PATHLET_PLUGIN("overlay", {
                   .param_string("speed_unit", "",
                                 "unit shown with the legend; empty = the data's velocity unit where its file says it "
                                 "(else the legend just says \"speed\")")
-                  .param_float("font_px", 0.0, 0.0, 400.0, "text height in pixels; 0 = auto: output height / 28")
+                  .param_float("font_px", 0.0, 0.0, 400.0,
+                               "text height in pixels; 0 = auto: 13 px at 270 lines, growing with the square root of the "
+                               "output height (18 at 540, 26 at 1080, 37 at 2160)")
                   .param_string("font", "", "a TrueType/OpenType font file (.ttf, .otf, .ttc; nothing else is opened); empty = "
                                             "DejaVu Sans (share/pathlet/fonts, else fonts-dejavu-core); one that cannot be "
                                             "used gives a warning and the built-in font")

@@ -34,6 +34,16 @@ TEST(BenchSummary, HasWallFpsAndMarksOnlyTheUnstableRun) {
     EXPECT_NE(t.find("UNSTABLE: frame times spread more than p95/p5 = 1.5"), std::string::npos) << t;
 }
 
+// llvmpipe's frames are timed by CPU clocks and it has no clock governor: a spread there is
+// other load, not a clock, and the README promises UNSTABLE for GPUs only.
+TEST(BenchSummary, NoUnstableOnASoftwareRasterizer) {
+    SummaryRow spread{"llvmpipe  160x90", frame(20.0, 4.0, 74.0), 31.0};
+    spread.gpu_timing = false;
+    const std::string t = summary_table({spread});
+    EXPECT_EQ(t.find("UNSTABLE"), std::string::npos) << t;
+    EXPECT_NE(t.find("frame fps"), std::string::npos) << t;
+}
+
 TEST(BenchSummary, NoUnstableNoteWhenEveryRunIsSteady) {
     const std::string t = summary_table({{"a", frame(10, 9.5, 11), 95.0}});
     EXPECT_EQ(t.find("UNSTABLE"), std::string::npos) << t;

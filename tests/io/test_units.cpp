@@ -102,6 +102,12 @@ TEST_F(IoUnits, UnitsOption) {
     EXPECT_EQ(file.velocity, "m/s");
     apply_units_option(file, "");
     EXPECT_EQ(file, (Units{"mm", "s", "m/s"}));
+    Units vtk;  // a file without units (VTK): the velocity's per-time names the time's unit
+    apply_units_option(vtk, "mm,m/s");
+    EXPECT_EQ(vtk, (Units{"mm", "s", "m/s"}));
+    Units strange;
+    apply_units_option(strange, "mm,m/frame");  // no known time unit: none guessed
+    EXPECT_EQ(strange, (Units{"mm", "", "m/frame"}));
     for (const char* bad : {",", "a,b,c", "m\x01", " mm", "abcdefghijklmnopqrstuvwxyz"})
         EXPECT_THROW(apply_units_option(u, bad), std::invalid_argument) << bad;
     // Through the loader: a bad spec names the file.

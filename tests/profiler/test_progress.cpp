@@ -34,7 +34,7 @@ TEST(Progress, PlainLinesEveryTwentiethWhenNotATerminal) {
     auto lines = lines_of(err);
     ASSERT_EQ(lines.size(), 21u) << err;  // every 2nd frame (40/20), plus the summary
     EXPECT_EQ(lines[0].rfind("2/40 frames  ", 0), 0u) << lines[0];
-    EXPECT_NE(lines[0].find(" fps  ETA "), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find(" fps (wall clock)  ETA "), std::string::npos) << lines[0];
     EXPECT_NE(lines[0].find("(5%)"), std::string::npos) << lines[0];
     EXPECT_EQ(lines[19].rfind("40/40 frames  ", 0), 0u) << lines[19];
     EXPECT_NE(lines[19].find("lineao"), std::string::npos);

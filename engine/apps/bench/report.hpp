@@ -23,9 +23,12 @@ struct SummaryRow {
     Profiler::Stats frame;
     double wall_fps = 0;
     std::string chunks = "-";
+    bool gpu_timing = true;  // GL timestamps (a GPU); false: glFinish-bracketed clocks (llvmpipe)
 };
-// The summary: median/p5/p95 frame ms, fps of the median frame, wall fps, chunks; a run whose
-// p95/p5 exceeds Profiler::kUnstableRatio is marked UNSTABLE, with a line saying what that means.
+// The summary: median/p5/p95 frame ms, fps of the median frame ("frame fps", as the timing
+// table's "fps (median frame)"), wall fps ("fps (wall clock)"), chunks. On a GPU a run whose
+// p95/p5 exceeds Profiler::kUnstableRatio is marked UNSTABLE (its clock changed during the run),
+// with a line saying what that means; llvmpipe has no clock governor, so nothing is marked there.
 std::string summary_table(const std::vector<SummaryRow>& rows);
 
 // Writes the files above into dir (atomically, each); returns their names.

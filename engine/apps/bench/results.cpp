@@ -1,5 +1,7 @@
 #include "bench/results.hpp"
 
+#include "bench/calibration.hpp"
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -106,6 +108,20 @@ void Results::add_run(size_t index, const Run& run, const ExperimentGraph& g, co
     j_["runs"].push_back(run_entry(p, meta));
 }
 
+void Results::add_calibration(const std::string& workload, const std::vector<double>& before_ms,
+                              const std::vector<double>& after_ms) {
+    if (j_["runs"].empty()) return;
+    std::vector<double> both = before_ms;
+    both.insert(both.end(), after_ms.begin(), after_ms.end());
+    j_["runs"].back()["calibration"] = {{"before_ms", before_ms}, {"after_ms", after_ms}, {"median_ms", median_of(both)}};
+    std::vector<double> all;
+    for (const json& r : j_["runs"])
+        if (r.contains("calibration"))
+            for (const char* k : {"before_ms", "after_ms"})
+                for (const json& v : r["calibration"][k]) all.push_back(v.get<double>());
+    j_["calibration"] = {{"workload", workload}, {"median_ms", median_of(all)}};
+}
+
 json graph_entry(const std::string& graph, const std::string& path) {
     return {{"graph", graph}, {"path", path}, {"fnv1a64", file_hash(path)}};
 }
@@ -133,6 +149,12 @@ json merge_results(const std::vector<std::pair<std::string, json>>& parts, const
     merged["runs"] = json::array();
     for (auto& [k, r] : runs) merged["runs"].push_back(r);
     merged["complete"] = runs.size() == merged.value("planned_runs", size_t(0));
+    std::vector<double> all;  // the machine's speed over every shard's runs
+    for (const json& r : merged["runs"])
+        if (r.contains("calibration"))
+            for (const char* k : {"before_ms", "after_ms"})
+                for (const json& v : r["calibration"][k]) all.push_back(v.get<double>());
+    if (!all.empty()) merged["calibration"]["median_ms"] = median_of(all);
     return merged;
 }
 

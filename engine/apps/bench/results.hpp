@@ -6,9 +6,11 @@
 //    "graphs": {label: {graph, path, fnv1a64}}, "sizes", "time" ("" = the middle of each data
 //    set's span), "frames", "warmup", "sweep_param", "planned_runs", "complete",
 //    "shard": {index, count} (a shard only), "timing_backend",
+//    "calibration": {workload, median_ms} (the machine's speed over all runs: bench/calibration.hpp),
 //    "data": [{source, lines, points, mesh_triangles, time (as rendered: "T" or "A:B:STEP")}],
 //    "runs": [{"meta": {index, label, graph_label, graph, graph_path, size, sweep_value, sets, data,
-//                       renderer, image?}, profiler summary..., "frames": [...]}]}
+//                       renderer, image?}, profiler summary..., "frames": [...],
+//              "calibration": {before_ms: [...], after_ms: [...], median_ms}}]}
 #pragma once
 
 #include "bench/experiment.hpp"
@@ -34,6 +36,10 @@ public:
     // A finished run: its place in the plan, what it drew, its timings and representative image.
     void add_run(size_t index, const Run& run, const ExperimentGraph& g, const std::string& graph_path,
                  const std::vector<std::string>& sets, const std::string& data, const Profiler& p, const std::string& image);
+    // The calibration workload's samples timed just before and after the last run added
+    // (bench/calibration.hpp): the run's "calibration" and the header's median over all runs.
+    void add_calibration(const std::string& workload, const std::vector<double>& before_ms,
+                         const std::vector<double>& after_ms);
     void set_complete(bool c) { j_["complete"] = c; }
     const nlohmann::json& doc() const { return j_; }  // what results.json holds
 

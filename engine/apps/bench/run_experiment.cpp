@@ -1,5 +1,6 @@
 #include "run_experiment.hpp"
 
+#include "calibration.hpp"
 #include "results.hpp"
 
 #include "cli/scene_args.hpp"
@@ -44,6 +45,8 @@ json graph_info(const Experiment& e, const std::string& origin) {
 }
 
 namespace {
+constexpr int kCalibrationSamples = 3;  // on each side of a run
+
 // The --set list of one run: the experiment's, its graph's, the sweep's value.
 std::vector<std::string> run_sets(const Experiment& e, const Run& run) {
     std::vector<std::string> sets = e.sets;
@@ -79,6 +82,7 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
     // governor, and a second of its frames would only slow the runs down).
     if (!is_software_renderer(rt.gl->renderer())) base.warmup_seconds = 1.0;
 
+    Calibration calibration;  // the machine's speed, timed before and after every run
     Results results(e, s.command, rt.gl->renderer(), s.graphs, runs.size(), s.shard);
     results.set_complete(mine == 0);
     if (hooks.on_report) hooks.on_report(results.doc(), nullptr);  // a shard with no runs still leaves its results
@@ -110,7 +114,9 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
         opt.graph_path = resolve_graph_path(g.graph);
         opt.sets = run_sets(e, run);
         opt.size = parse_size(run.size);
+        const std::vector<double> calibrated_before = calibration.samples_ms(kCalibrationSamples);
         RenderResult r = render(rt, *scene, opt);
+        const std::vector<double> calibrated_after = calibration.samples_ms(kCalibrationSamples);
         std::string image;
         if (!s.image_dir.empty()) {  // what the time bought: one frame, at the first time, written
             RenderOptions io = opt;
@@ -124,6 +130,7 @@ json run_experiment(Runtime& rt, const Experiment& e, const ExperimentSettings& 
                 if (image.empty() && fs::path(f).extension() == ".png") image = fs::relative(f, s.image_dir).generic_string();
         }
         results.add_run(k, run, g, opt.graph_path, opt.sets, scene->source, r.profiler, image);
+        results.add_calibration(Calibration::description(), calibrated_before, calibrated_after);
         results.set_complete(++done == mine);
         const RunDone finished{run, r.profiler, *scene, done, mine, r.incomplete_frames, r.frames};
         if (hooks.on_report) hooks.on_report(results.doc(), &finished);

@@ -4,6 +4,7 @@
 #include "renderer.hpp"
 #include "util/text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -174,6 +175,7 @@ bool Args::parse(const std::vector<std::string>& argv) {
                 if (best.empty() && longer.size() == 1) best = longer[0];  // --plugin: --plugin-dir
                 throw UsageError("unknown option --" + name + (best.empty() ? "" : " (did you mean --" + best + "?)"));
             }
+            given_.push_back(o->name);
             if (o->kind == Kind::Flag) {
                 if (inline_value) throw UsageError("--" + name + " takes no value");
                 o->set("");
@@ -194,6 +196,17 @@ bool Args::parse(const std::vector<std::string>& argv) {
     for (size_t k = next_pos; k < pos_.size(); ++k)
         if (pos_[k].required && !(pos_[k].rest && rest_seen)) throw UsageError("missing " + pos_[k].name);
     return true;
+}
+
+bool Args::given(const std::string& name) const {
+    return std::find(given_.begin(), given_.end(), name) != given_.end();
+}
+
+void Args::unused_here(const std::vector<std::string>& names, const std::string& why) const {
+    for (const auto& n : names) {
+        if (!find(n)) throw DeclarationError("Args::unused_here: --" + n + " is not an option of " + command_);
+        if (given(n)) throw UsageError("--" + n + " does nothing " + why);
+    }
 }
 
 std::string Args::help() const {

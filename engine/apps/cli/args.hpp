@@ -112,6 +112,12 @@ public:
 
     // Returns false when --help was asked for (help already printed to stdout).
     bool parse(const std::vector<std::string>& argv);
+    // After parse: whether the command line gave the option --name.
+    bool given(const std::string& name) const;
+    // An option a command would ignore is an error, not silence: throws UsageError
+    // "--NAME does nothing WHY" for the first of `names` the command line gave
+    // (e.g. unused_here({"threshold"}, "without --compare")).
+    void unused_here(const std::vector<std::string>& names, const std::string& why) const;
     std::string help() const;
 
 private:
@@ -135,6 +141,7 @@ private:
     std::vector<Opt> opts_;
     std::vector<Pos> pos_;
     std::vector<std::pair<std::string, std::string>> examples_;
+    std::vector<std::string> given_;  // options the command line gave, in order
 };
 
 }  // namespace pathlet::cli

@@ -51,7 +51,9 @@ struct BenchOptions {
     void declare(Args& a) {
         a.positional("GRAPHS", graphs, "comma-separated graph files or shipped graph names (e.g. variant1_lineao,isl)", false)
             .option("experiment", experiment, "FILE", "run an experiment file (schema: graphs/schema/pathlet-experiment.schema.json)")
-            .option("out", out, "DIR", "where --experiment or --merge writes (default out/bench/<experiment name>)")
+            .option("out", out, "DIR",
+                    "where the results go: results.json, CSV, SVG, one image per run (GRAPHS: only with --out; "
+                    "--experiment: default out/bench/<experiment name>; --merge: required)")
             .option("shard", shard, "I/N", "do part I (0-based) of N of the runs: run k belongs to shard k % N")
             .multi("merge", merge, "DIR", "join shard results folders (repeat) into --out; no rendering")
             .option("compare", compare, "BASELINE.json", "compare with a baseline results.json; exit 1 on a regression")
@@ -71,7 +73,7 @@ struct BenchOptions {
         declare_timing(a, timing);
         declare_camera(a, camera);
         a.option("report", report, "PREFIX", "write PREFIX.csv and PREFIX.json with every pass of every run")
-            .flag("no-images", no_images, "--experiment: no representative image per run")
+            .flag("no-images", no_images, "--experiment or --out: no representative image per run")
             .flag("plots", plots, "--experiment, --merge: also PNG and PDF figures with Matplotlib (python3 -m pathlet.plot)")
             .flag("quiet", quiet, "no progress line");
         plugins.declare(a);
@@ -132,8 +134,9 @@ Experiment experiment_from_args(const BenchOptions& o) {
 int compare_and_report(const json& baseline, const json& current, const BenchOptions& o) {
     if (!(o.threshold > 0)) throw UsageError("--threshold must be > 0 (0.5 = 50 % slower)");
     bench::CompareResult c = bench::compare_reports(baseline, current, o.threshold);
-    std::printf("compare against %s (regression: >%.0f %% slower and p5..p95 ranges apart)\n%s", o.compare.c_str(),
-                o.threshold * 100, c.table.c_str());
+    std::printf("compare against %s (regression: >%.0f %% slower as measured and on the machine's own speed, the "
+                "per-frame samples' middle halves apart, rank test p < %.2f)\n%s%s",
+                o.compare.c_str(), o.threshold * 100, bench::kMaxP, c.machine.c_str(), c.table.c_str());
     for (const auto& m : c.missing) std::printf("  not in the current results: %s\n", m.c_str());
     std::printf("%d compared, %d regressions, %d faster\n", c.compared, c.regressions, c.improvements);
     if (c.compared == 0) {
@@ -220,7 +223,7 @@ Plan make_plan(const BenchOptions& o, const std::vector<std::string>& argv) {
     command.insert(command.end(), argv.begin(), argv.end());
     p.how.command = text::shell_command(command);
     p.how.graphs = bench::graph_info(e, p.from_file ? o.experiment : "");
-    if (p.from_file) {
+    if (p.from_file || !o.out.empty()) {  // GRAPHS --out DIR writes the same files as an experiment
         const Shard& sh = p.how.shard;
         p.out_dir = !o.out.empty() ? o.out
                                    : "out/bench/" + e.name +
@@ -275,7 +278,7 @@ struct Finished {
 Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
     Finished f;
     auto write_files = [&] {
-        if (p.from_file) bench::write_report_dir(p.out_dir, f.results);
+        if (!p.out_dir.empty()) bench::write_report_dir(p.out_dir, f.results);
         if (!o.report.empty()) {
             write_file_atomic(o.report + ".csv", bench::summary_csv(f.results));
             write_file_atomic(o.report + ".json", f.results.dump(1));
@@ -292,7 +295,9 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
         const std::string title = run->run.label + " — " + run->run.size + ", " +
                                   std::to_string(run->scene.lines.line_count()) + " lines";
         if (!o.quiet || !p.from_file) std::printf("%s\n", run->profiler.table(title).c_str());
+        std::fflush(stdout);  // whole, before the progress line on stderr (bench 2>&1 | tee)
         bench::SummaryRow row{run->run.label + "  " + run->run.size, run->profiler.frame_ms(), run->profiler.wall_fps()};
+        row.gpu_timing = run->profiler.backend() == TimingBackend::GlTimestamp;
         const ChunkCounts c = chunk_counts(run->profiler);
         if (c.any) {
             char chunks[96];
@@ -322,7 +327,8 @@ int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& 
     // Chunks per frame over the culling line passes: drawn in phase 1 + phase 2 / hidden by
     // depth / outside the frustum (the line kit's culling; cull=false: nothing hidden).
     std::fputs(bench::summary_table(f.summary).c_str(), stdout);
-    if (p.from_file) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", p.out_dir.c_str());
+    std::fflush(stdout);
+    if (!p.out_dir.empty()) std::fprintf(stderr, "wrote %s/results.json, summary.csv, frames.csv and plots\n", p.out_dir.c_str());
     if (o.plots && !write_plots(p.out_dir)) return 1;
     if (!o.report.empty()) std::fprintf(stderr, "wrote %s.csv and %s.json\n", o.report.c_str(), o.report.c_str());
     if (f.incomplete_count) {  // as render's last line; with several runs, each run's frames named
@@ -339,6 +345,32 @@ int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& 
     return 0;
 }
 
+// An option this mode would ignore is an error that says so (issue 41: GRAPHS --out was
+// silently ignored).
+void check_options_used(const Args& a, const BenchOptions& o) {
+    const std::vector<std::string> rendering = {
+        "experiment", "shard", "size", "time", "frames", "warmup", "set", "timing", "camera", "report", "no-images",
+        "data", "mesh", "phantom", "time-array", "velocity-array", "time-step", "units", "streamlines", "pseudo-time",
+        "plugin-dir", "trust-graph-plugins", "quiet"};
+    auto all_but = [&](std::vector<std::string> keep) {
+        std::vector<std::string> out = rendering;
+        out.insert(out.end(), {"compare", "against", "threshold", "plots", "out", "merge"});
+        std::erase_if(out, [&](const std::string& n) { return std::find(keep.begin(), keep.end(), n) != keep.end(); });
+        return out;
+    };
+    if (!o.merge.empty()) {
+        if (!o.graphs.empty()) throw UsageError("GRAPHS do nothing with --merge (it joins results folders; nothing is rendered)");
+        a.unused_here(all_but({"merge", "out", "plots"}), "with --merge (it joins results folders; nothing is rendered)");
+    }
+    if (!o.against.empty()) {
+        if (!o.graphs.empty()) throw UsageError("GRAPHS do nothing with --against (it compares two results files)");
+        a.unused_here(all_but({"compare", "against", "threshold"}),
+                      "with --against (it compares two results files; nothing is rendered)");
+    }
+    if (o.compare.empty()) a.unused_here({"threshold"}, "without --compare BASELINE.json");
+    if (o.experiment.empty() && o.out.empty()) a.unused_here({"no-images"}, "without --out or --experiment (no images are written)");
+}
+
 int run(const std::vector<std::string>& argv) {
     Args a("bench",
            "Times graphs over the same data, camera, times and output sizes. For every graph and size it\n"
@@ -347,8 +379,9 @@ int run(const std::vector<std::string>& argv) {
            "sweeps) and writes results.json (every frame, machine, GL renderer, command, graph hashes),\n"
            "summary.csv, frames.csv, passes.svg (stacked per-pass bars), sweep.svg and one image per run.\n"
            "--compare checks the results against a baseline results.json and exits 1 on a regression: a\n"
-           "pass counts as slower only when its median grew by more than --threshold AND its p5..p95 range\n"
-           "lies wholly above the baseline's, so re-runs on a noisy machine are not flagged.\n"
+           "pass counts as slower only when its median grew by more than --threshold, as measured AND on the\n"
+           "machine's own speed (a calibration workload timed beside every run), its per-frame samples lie\n"
+           "apart from the baseline's (middle halves, rank test), so a busy machine or noise is not flagged.\n"
            "--set GRAPH:NAME=VALUE goes to that graph only (so other graphs need not know NAME); plain\n"
            "--set NAME=VALUE goes to every graph, and a graph without NAME is an error.\n"
            "Ctrl-C stops after the run in progress; the files then hold every finished run.");
@@ -367,6 +400,7 @@ int run(const std::vector<std::string>& argv) {
                  "--merge s2 --out all)",
                  "split over three machines (see scripts/slurm/)");
     if (!a.parse(argv)) return 0;
+    check_options_used(a, o);
 
     if (!o.merge.empty()) return merge(o);
     if (!o.against.empty()) {

@@ -159,7 +159,7 @@ int run(const std::vector<std::string>& argv) {
         RenderResult r = render(rt, scene, opt);
         if (const int sig = signals.signal()) {
             video.reset();  // stops ffmpeg, removes its temp file
-            if (progress) progress->finish(std::to_string(r.frames) + " frames");
+            if (progress) progress->finish(std::to_string(r.frames) + " frames", r.profiler.wall_fps());
             std::fprintf(stderr, "interrupted (%s): %zu frame(s) rendered and written%s%s\n",
                          sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal", r.frames,
                          r.files.empty() ? "" : (", e.g. " + r.files.back()).c_str(),
@@ -170,7 +170,9 @@ int run(const std::vector<std::string>& argv) {
             video->close();
             r.files.push_back(video_path);
         }
-        if (progress) progress->finish(std::to_string(r.frames) + " frames" + (r.frames_read_back ? " rendered and written" : ""));
+        if (progress)  // the rate the table's "fps (wall clock)" says
+            progress->finish(std::to_string(r.frames) + " frames" + (r.frames_read_back ? " rendered and written" : ""),
+                             r.profiler.wall_fps());
         if (r.frames_read_back && !opt.quiet)  // where the encoders are the bottleneck, this says so
             std::fprintf(stderr, "output: %.1f s of the frame loop went to read-back and waiting for the encoders (%.1f s after the last frame)\n",
                          r.output_s, r.output_drain_s);

@@ -72,7 +72,7 @@ std::string Progress::status(size_t done, const std::string& note) const {
     return s;
 }
 
-std::string Progress::rate_unit() const { return what_ == "frames" ? "fps" : what_ + "/s"; }
+std::string Progress::rate_unit() const { return what_ == "frames" ? "fps (wall clock)" : what_ + "/s"; }
 
 std::string Progress::bar(size_t done) const {
     int filled = total_ ? int(double(kBarWidth) * double(std::min(done, total_)) / double(total_)) : kBarWidth;
@@ -111,12 +111,17 @@ void Progress::update(size_t done, const std::string& note) {
 }
 
 void Progress::finish(const std::string& summary) {
+    const double t = elapsed_s();
+    finish(summary, t > 0 ? double(done_) / t : 0);
+}
+
+void Progress::finish(const std::string& summary, double rate) {
     if (finished_) return;
     finished_ = true;
     if (quiet_) return;
     double t = elapsed_s();
     std::string line = summary + " in " + format_duration(t);
-    if (counts_) line += " (" + printf_string("%.1f", t > 0 ? double(done_) / t : 0) + " " + rate_unit() + ")";
+    if (counts_) line += " (" + printf_string("%.1f", rate) + " " + rate_unit() + ")";
     line += "\n";
     emit((line_open_ ? "\r\033[K" : "") + line);
     line_open_ = false;

@@ -55,6 +55,14 @@ void apply_units_option(Units& u, const std::string& spec) {
     if (!length.empty()) u.length = length;
     if (!velocity.empty()) u.velocity = velocity;
     else if (u.velocity.empty()) u.velocity = derived_velocity_unit(u);
+    // A velocity per time unit names the time's unit where the file did not (the time label's
+    // "s" for VTK data loaded with --units mm,m/s).
+    const size_t slash = u.velocity.rfind('/');
+    if (u.time.empty() && slash != std::string::npos && slash + 1 < u.velocity.size()) {
+        const std::string t = u.velocity.substr(slash + 1);
+        for (const char* known : {"s", "ms", "min", "h"})
+            if (t == known) u.time = t;
+    }
 }
 
 std::string describe_units(const Units& u) {

@@ -26,8 +26,11 @@ TracedLine resample_by_length(const TracedLine& in, float step) {
     if (in.size() == 0) return out;
     auto emit = [&](size_t i, float f) {  // point f of the way from sample i to i+1
         const size_t j = std::min(i + 1, in.size() - 1);
+        const float t = in.time[i] + (in.time[j] - in.time[i]) * f;
+        // No second point at one float time (a long step of little time): loaders drop those.
+        if (!out.time.empty() && !(t > out.time.back())) return;
         out.position.push_back(in.position[i] + (in.position[j] - in.position[i]) * f);
-        out.time.push_back(in.time[i] + (in.time[j] - in.time[i]) * f);
+        out.time.push_back(t);
         out.velocity.push_back(in.velocity[i] + (in.velocity[j] - in.velocity[i]) * f);
     };
     emit(0, 0.0f);

@@ -25,7 +25,10 @@ float integrate_direction(const FlowSampler& flow, glm::vec3 p, float t, float d
         if (!(speed >= min_speed) || speed == 0.0f) break;
         const float window = dir > 0 ? o.time_end - t : t - o.time_begin;
         const float dt = std::min({h / speed, o.max_dt, budget - used, window});
-        if (dt <= 1e-7f) break;
+        // A step below float resolution at this time (1e-7 s at 18 s) gives no new time: a point
+        // with the last one's time, which every loader drops (a generated and a cached phantom
+        // would then differ by those points).
+        if (dt <= 1e-7f || t + dir * dt == t) break;
         const glm::vec3 q = rk4_step(vel, p, t, dir * dt, v);
         ++steps;
         if (!flow.inside(q)) break;

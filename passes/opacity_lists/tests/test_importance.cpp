@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <set>
@@ -70,6 +71,43 @@ TEST(OpacityLists, ImportanceFromAPointArrayOnItsRange) {
         for (float x : speed.at(line)) ASSERT_NEAR(x, 0.5f, 1e-6);
 }
 
+// Variant 4 with importance=array takes any array `pathlet info` lists: the velocity the
+// importers read as the lines' own (as its magnitude, whatever its case) and time too.
+TEST(OpacityLists, ImportanceFromTheVelocityArrayIsTheSpeed) {
+    static const Scene speeds = straight_lines_scene({{{0, 0, 0}, {10, 0, 0}, 2.0f, 41, {}},
+                                                      {{0, 3, 0}, {10, 3, 0}, 6.0f, 41, {}},
+                                                      {{0, 6, 0}, {10, 6, 0}, 4.0f, 41, {}}});
+    auto importance = [&](const std::string& array) {
+        FrameRunner run(kGraph, with({"importance=array", "importance_array=" + array, "opacity_lists.importance_min=2",
+                                     "opacity_lists.importance_max=6"}),
+                        speeds, kSize, camera_down_z(speeds, {5, 3, 0}, 30, 30, kSize), {"oo_lists", "oo_segments"});
+        run.frame(0.0);
+        const std::vector<uint32_t> l = run.words("oo_lists");
+        const Segments seg(run.words("oo_segments"));
+        const uint32_t nodes_at = (8 + l.at(3) * l.at(4) + 3) & ~3u;
+        std::map<uint32_t, std::vector<float>> out;
+        for (uint32_t i = 0; i < std::min(l.at(6), l.at(5)); ++i)
+            out[seg.line_of(l.at(nodes_at + 4 * i))].push_back(as_float(l.at(nodes_at + 4 * i + 2)));
+        return out;
+    };
+    for (const std::string name : {"velocity", "Velocity"}) {
+        const auto g = importance(name);
+        const float expect[3] = {0.0f, 1.0f, 0.5f};
+        for (uint32_t line = 0; line < 3; ++line) {
+            ASSERT_GT(g.count(line) ? g.at(line).size() : 0u, 20u) << name << ", line " << line;
+            for (float x : g.at(line)) ASSERT_NEAR(x, expect[line], 1e-5) << name << ", line " << line;
+        }
+    }
+    // Time runs from 0 to 10 / speed along each line: 5 s on line 0 (importance up to 0.75),
+    // 1.7 s on line 1 (below the range: 0 throughout).
+    const auto t = importance("time");
+    ASSERT_GT(t.count(0) ? t.at(0).size() : 0u, 20u);
+    EXPECT_EQ(*std::min_element(t.at(0).begin(), t.at(0).end()), 0.0f) << "t <= 2 s on line 0";
+    EXPECT_GT(*std::max_element(t.at(0).begin(), t.at(0).end()), 0.6f) << "t up to 5 s on line 0";
+    ASSERT_GT(t.count(1) ? t.at(1).size() : 0u, 20u);
+    EXPECT_EQ(*std::max_element(t.at(1).begin(), t.at(1).end()), 0.0f) << "t <= 1.7 s on line 1";
+}
+
 TEST(OpacityLists, ImportanceFromAHookOfLinePoint) {
     // importance_near.glsl: 1 at the point, falling to 0 at focus_radius; the middle line passes
     // through the point, the others lie 3 away, beyond the radius.
@@ -91,6 +129,7 @@ TEST(OpacityLists, AMissingArrayNamesTheArraysThereAre) {
         const std::string msg = e.what();
         EXPECT_NE(msg.find("vorticity"), std::string::npos) << msg;
         EXPECT_NE(msg.find("pressure"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("velocity (as its magnitude), time"), std::string::npos) << msg;
         EXPECT_NE(msg.find("opacity_lists"), std::string::npos) << msg;
     }
 }
