@@ -51,8 +51,8 @@ pathlet::PassTypeInfo oit_composite_type() {
                                     "resolve of blend-only OIT (wboit_accum, mboit_accum): the weighted mean colour "
                                     "over 1 - the pixel's transmittance, the background through the rest")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
-        .input_texture("accum", "rgba16f", "weighted premultiplied colour (rgb) and the weights' sum (a)")
-        .input_texture("revealage", "r16f", "WBOIT: the product of (1 - alpha) (wboit_accum); or absorbance",
+        .input_texture("accum", "any", "weighted premultiplied colour (rgb) and the weights' sum (a)")
+        .input_texture("revealage", "any", "WBOIT: the product of (1 - alpha) (wboit_accum); or absorbance",
                        {.optional = true})
         .input_texture("absorbance", "r32f", "MBOIT: the total absorbance b0 (mboit_moments); or revealage",
                        {.optional = true})

@@ -1,8 +1,10 @@
 // wboit_accum: weighted blended OIT (McGuire & Bavoil, JCGT 2(2), 2013), the accumulation. The
 // pathlets of the window are drawn through the line kit once, with blending only: per pixel the
-// sum of premultiplied colour x weight and of opacity x weight (rgba16f, additive), and the
-// revealage, the product of (1 - opacity) (r16f, multiplicative). No lists, no sort, no
-// read-back; oit_composite turns the two into the picture. 10 bytes a pixel.
+// sum of premultiplied colour x weight and of opacity x weight (rgba32f, additive), and the
+// revealage, the product of (1 - opacity) (r32f, multiplicative). No lists, no sort, no
+// read-back; oit_composite turns the two into the picture. 20 bytes a pixel (float32: llvmpipe
+// blends it faster than half floats, 548 against about 940 ms a frame with every line whole,
+// and the published weights cannot overflow it).
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
@@ -44,15 +46,15 @@ private:
 pathlet::PassTypeInfo wboit_accum_type() {
     pathlet::PassTypeBuilder b("wboit_accum",
                                "weighted blended OIT (McGuire & Bavoil 2013), accumulation: the window's fragments "
-                               "blended into weighted premultiplied colour and revealage, no lists (10 bytes a "
+                               "blended into weighted premultiplied colour and revealage, no lists (20 bytes a "
                                "pixel); oit_composite resolves them");
     lines::declare_params(b, {.color = "fade_opacity.frag"})
         .param_enum("weight", "depth_cubed", {"depth_cubed", "linevis"},
-                    "weight w(d, a), d the view's linear depth over [near, far]: depth_cubed = a max(1e-4, 30 (1 - "
-                    "d)^3) (the paper's eq. 10 / 100), linevis = clamp((8a + 0.01)^3 1e6 (1 - 0.95 d)^3, 1e-4, 3) "
-                    "(LineVis's weight / 100); a common factor leaves the picture as it is and keeps rgba16f finite")
-        .output_texture("accum", "rgba16f", "sum of premultiplied colour x weight (rgb) and opacity x weight (a)")
-        .output_texture("revealage", "r16f", "product of (1 - opacity) over the pixel's fragments (1: none)")
+                    "weight w(d, a), d the view's linear depth over [near, far]: depth_cubed = a max(0.01, 3000 (1 - "
+                    "d)^3) (the paper's eq. 10), linevis = clamp((8a + 0.01)^3 1e8 (1 - 0.95 d)^3, 0.01, 300) "
+                    "(LineVis's)")
+        .output_texture("accum", "rgba32f", "sum of premultiplied colour x weight (rgb) and opacity x weight (a)")
+        .output_texture("revealage", "r32f", "product of (1 - opacity) over the pixel's fragments (1: none)")
         .output_texture("coverage", "depth24", "depth < 1 where any fragment landed (the wall and oit_composite skip "
                         "the rest)", {.optional = true});
     lines::declare_core_ao_inputs(b);

@@ -14,16 +14,14 @@ uniform int u_weight;  // 0 depth_cubed, 1 linevis
 layout(location = 0) out vec4 o_accum;
 layout(location = 1) out vec4 o_revealage;
 
-// Both weights are the published ones / 100: the colour is a ratio of sums, so a constant factor
-// changes nothing but the range, and rgba16f then holds > 2000 opaque fragments a pixel (the
-// published caps, 300 and 3000, overflow it after 218 and 21).
+// The published weights (float32 sums hold them: no range to save).
 float wboit_weight(float a, float d) {
     if (u_weight == 1) {
         float s = min(1.0, a) * 8.0 + 0.01, t = 1.0 - 0.95 * d;
-        return clamp(s * s * s * 1e6 * t * t * t, 1e-4, 3.0);
+        return clamp(s * s * s * 1e8 * t * t * t, 1e-2, 3e2);
     }
     float t = 1.0 - d;
-    return a * max(1e-4, 30.0 * t * t * t);
+    return a * max(1e-2, 3e3 * t * t * t);
 }
 
 void main() {

@@ -59,8 +59,8 @@ double depth_of(const glm::uvec4& n) {
     return d;
 }
 
-// The paper's eq. 10 / 100 (wboit_accum's default weight, depth_cubed).
-double weight(double a, double d) { return a * std::max(1e-4, 30.0 * std::pow(1.0 - d, 3.0)); }
+// The paper's eq. 10 (wboit_accum's default weight, depth_cubed).
+double weight(double a, double d) { return a * std::max(1e-2, 3e3 * std::pow(1.0 - d, 3.0)); }
 
 }  // namespace
 
