@@ -250,6 +250,21 @@ def test_transparency_numbers_are_the_commands(pathlet, cli, scene):
         pathlet.quality("variant4_opacity", scene, time="2:2.08:0.04", size=(32, 18), transparency=True, focus_share=2)
 
 
+def test_quality_against_a_reference_is_the_commands(pathlet, cli, scene, tmp_path):
+    # Issue 42: fidelity against a reference graph, the command's numbers; the graph's sets go to both.
+    args = ["--time", "2:2.08:0.04", "--size", "96x54", "--set", "overlay=false"]
+    out = cli("quality", "variant2_oit", "--reference", "variant2_exact", *args, "--phantom", "small").stdout
+    g = pathlet.Graph("variant2_oit").set(overlay=False)
+    q = pathlet.quality(g, scene, time="2:2.08:0.04", size=(96, 54), reference="variant2_exact", out=tmp_path)
+    assert f"ssim {q['ssim']:.5f}" in out and f"rmse {q['rmse']:.5f}" in out and f"psnr {q['psnr']:.2f}" in out
+    assert f"share over 8/255 {100 * q['share_over']:.4f} %" in out
+    assert f"flicker vs reference {q['flicker_excess']:.5f}" in out
+    assert q["frames"] == 3 and len(q["per_frame"]) == 3 and 0 < q["ssim"] < 0.99
+    assert len(q["images"]) == 5 and all(os.path.exists(f) for f in q["images"])
+    same = pathlet.quality(g, scene, time="2:2.08:0.04", size=(96, 54), reference=g)
+    assert same["ssim"] == 1.0 and same["rmse"] == 0.0 and same["flicker_excess"] == 0.0
+
+
 def test_render_keeps_the_commands_limits(pathlet, scene):
     with pytest.raises(ValueError, match=r"ssaa must be 1\.\.8 \(got 9\)"):
         pathlet.render("variant1_lineao", scene, time=2, size=(16, 9), ssaa=9)

@@ -11,6 +11,7 @@
 #include "bench/experiment.hpp"
 #include "bench/run_experiment.hpp"
 #include "measure.hpp"
+#include "reference.hpp"
 #include "transparency.hpp"
 
 #include <algorithm>
@@ -59,6 +60,40 @@ int run_experiment_table(Runtime& rt, const std::string& file, quality::Transpar
     return 0;
 }
 
+// --reference: fidelity of GRAPH against REFGRAPH (issue 42).
+int run_reference(const quality::QualityOptions& q, const std::string& reference, bool out_given, bool transparency,
+                  const std::string& experiment, bool allow_empty, PluginOptions& plugins, SceneOptions& data) {
+    if (transparency || !experiment.empty()) throw UsageError("--reference measures fidelity; not with --transparency or --experiment");
+    if (q.time && q.time->times().empty()) throw UsageError("--time gives no frame");
+    quality::ReferenceOptions o;
+    o.graph_path = q.graph_path;
+    o.reference_path = reference;
+    o.size = q.size;
+    o.time = q.time;
+    if (out_given) o.out_dir = q.work_dir;
+    Runtime rt;
+    plugins.load(rt);
+    o.sets = rt.user_sets(q.sets);
+    const Scene scene = data.load(true);
+    if (q.time) check_time_in_data(*q.time, shown(*q.time), scene, allow_empty);
+    const quality::ReferenceResult r = quality::measure_against_reference(rt, scene, o);
+    const quality::ImageMetrics& m = r.metrics;
+    std::printf("%s vs %s: %zu frames %dx%d, t=%.2f..%.2f, %zu covered pixels (%.0f a frame)\n", r.graph.c_str(),
+                r.reference.c_str(), r.frames, o.size.x, o.size.y, r.first_time, r.last_time, m.pixels,
+                double(m.pixels) / double(std::max<size_t>(r.frames, 1)));
+    std::printf("ssim %.5f\n", m.ssim);
+    std::printf("psnr %.2f\n", m.psnr);
+    std::printf("rmse %.5f\n", m.rmse);
+    std::printf("share over 8/255 %.4f %%\n", 100.0 * m.share_over);
+    if (r.flicker)
+        std::printf("flicker vs reference %.5f (own change %.5f, the reference's %.5f)\n", r.flicker->excess,
+                    r.flicker->test_change, r.flicker->reference_change);
+    else
+        std::printf("flicker vs reference n/a (one frame)\n");
+    for (const std::string& f : r.images) std::printf("wrote %s\n", f.c_str());
+    return 0;
+}
+
 int run(const std::vector<std::string>& argv) {
     Args a("quality",
            "Measures AO quality (LineAO, volume AO, or per-fragment AO under OIT) at a fixed camera over a\n"
@@ -82,7 +117,7 @@ int run(const std::vector<std::string>& argv) {
     declare_size(a, q.size, "output size in pixels");
     bool images = false, transparency = false;
     quality::TransparencyOptions t;
-    std::string experiment;
+    std::string experiment, reference;
     a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
         .option("flicker-rays", q.flicker_rays, "N",
                 "ray-traced AO of every frame, for the flicker against the reference's own change: rays per pixel "
@@ -102,6 +137,13 @@ int run(const std::vector<std::string>& argv) {
         .option("experiment", experiment, "FILE",
                 "--transparency: every graph (and sweep value) of an experiment file on its data sets, one table "
                 "row each; its time and first size unless --time/--size are given")
+        .option("reference", reference, "REFGRAPH",
+                "fidelity instead: GRAPH and REFGRAPH rendered over the same times, size and camera (--set for "
+                "both), compared over the pixels either covers: windowed SSIM (Wang et al. 2004, 11x11 Gaussian "
+                "on luminance), PSNR, RMSE, the share of pixels more than 8/255 apart and the flicker beyond the "
+                "reference's own; --out DIR gets the difference images")
+        .example("pathlet quality variant2_exact --reference variant2_depth_peel --set window=0 --size 1280x720",
+                 "the exact reference against depth peeling")
         .example("pathlet quality variant4_opacity --transparency --size 1280x720", "what the optimized opacity shows")
         .example("pathlet quality --transparency --experiment graphs/experiments/transparency.json",
                  "variant 2, a uniform opacity, a speed transfer function and variant 4 side by side");
@@ -118,6 +160,9 @@ int run(const std::vector<std::string>& argv) {
     t.sets = q.sets;
     t.size = q.size;
     t.time = q.time;
+    const bool out_given = std::find(argv.begin(), argv.end(), "--out") != argv.end();
+    if (!reference.empty()) return run_reference(q, resolve_graph_path(reference), out_given, transparency,
+                                                 experiment, allow_empty, plugins, data);
     try {
         if (transparency) quality::check_transparency_options(t);
         else quality::check_quality_options(q);

@@ -18,6 +18,7 @@
 #include "io/raw_polylines.hpp"
 #include "io/units.hpp"
 #include "measure.hpp"
+#include "reference.hpp"
 #include "transparency.hpp"
 #include "renderer.hpp"
 #include "util/output_check.hpp"
@@ -491,6 +492,46 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
     return d;
 }
 
+// quality(..., reference=...): fidelity against a reference graph (issue 42).
+py::dict run_reference(const std::string& graph, const std::vector<std::string>& sets, const std::string& reference,
+                       const std::vector<std::string>& reference_sets, const SceneRef& scene, const std::string& time,
+                       const std::string& size, const std::string& out_dir) {
+    quality::ReferenceOptions o;
+    o.graph_path = graph;
+    o.reference_path = reference;
+    o.sets = sets;
+    o.reference_sets = reference_sets;
+    o.size = parse_size(size);
+    if (!time.empty()) o.time = parse_time_range(time);
+    o.out_dir = out_dir;
+    quality::ReferenceResult r;
+    {
+        py::gil_scoped_release nogil;
+        r = GlThread::get().call([&](Runtime& rt) { return quality::measure_against_reference(rt, *scene, o); });
+    }
+    auto metrics = [](const quality::ImageMetrics& m) {
+        py::dict d;
+        d["ssim"] = m.ssim, d["psnr"] = m.psnr, d["rmse"] = m.rmse, d["share_over"] = m.share_over;
+        d["pixels"] = m.pixels;
+        return d;
+    };
+    py::dict d = metrics(r.metrics);
+    d["graph"] = r.graph;
+    d["reference"] = r.reference;
+    d["frames"] = r.frames;
+    d["times"] = py::make_tuple(r.first_time, r.last_time);
+    if (r.flicker) {
+        d["flicker_excess"] = r.flicker->excess;
+        d["flicker"] = r.flicker->test_change;
+        d["reference_change"] = r.flicker->reference_change;
+    }
+    py::list frames;
+    for (const quality::ImageMetrics& m : r.per_frame) frames.append(metrics(m));
+    d["per_frame"] = frames;
+    d["images"] = r.images;
+    return d;
+}
+
 py::dict run_transparency(const std::string& graph, const std::vector<std::string>& sets, const SceneRef& scene,
                           const std::string& time, const std::string& size, int repeat, double focus_share,
                           double visible) {
@@ -640,6 +681,7 @@ PYBIND11_MODULE(_pathlet, m) {
         return run_quality(graph, sets, s, time, size, rays, flicker_rays, own_line, max_distance, depth_tolerance,
                            work_dir);
     });
+    m.def("quality_reference", &run_reference);
     m.def("transparency", [](const std::string& graph, const std::vector<std::string>& sets, const std::shared_ptr<Scene>& s,
                              const std::string& time, const std::string& size, int repeat, double focus_share,
                              double visible) {

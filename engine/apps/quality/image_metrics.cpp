@@ -1,0 +1,177 @@
+#include "image_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pathlet::quality {
+namespace {
+
+void require_same(const Image& a, const Image& b, size_t mask) {
+    if (a.width != b.width || a.height != b.height)
+        throw std::invalid_argument("images differ in size: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                    " and " + std::to_string(b.width) + "x" + std::to_string(b.height));
+    if (a.channels < 3 || b.channels < 3) throw std::invalid_argument("images need RGB channels");
+    if (mask != size_t(a.width) * size_t(a.height)) throw std::invalid_argument("mask and images differ in size");
+}
+
+// The normalised 1D Gaussian; the 2D window is its outer product (separable).
+std::vector<double> gaussian() {
+    std::vector<double> g(kSsimWindow);
+    double sum = 0;
+    for (int i = 0; i < kSsimWindow; ++i) {
+        const double x = i - kSsimWindow / 2;
+        sum += g[size_t(i)] = std::exp(-x * x / (2 * kSsimSigma * kSsimSigma));
+    }
+    for (double& v : g) v /= sum;
+    return g;
+}
+
+// The 'valid' Gaussian filtering of `v`: out(x, y) for windows centred at (x, y) wholly inside.
+std::vector<double> filter_valid(const std::vector<double>& v, int w, int h, const std::vector<double>& g) {
+    const int r = kSsimWindow / 2;
+    std::vector<double> rows(v.size(), 0.0), out(v.size(), 0.0);
+    for (int y = 0; y < h; ++y)
+        for (int x = r; x < w - r; ++x) {
+            double s = 0;
+            for (int k = -r; k <= r; ++k) s += g[size_t(k + r)] * v[size_t(y) * size_t(w) + size_t(x + k)];
+            rows[size_t(y) * size_t(w) + size_t(x)] = s;
+        }
+    for (int y = r; y < h - r; ++y)
+        for (int x = r; x < w - r; ++x) {
+            double s = 0;
+            for (int k = -r; k <= r; ++k) s += g[size_t(k + r)] * rows[size_t(y + k) * size_t(w) + size_t(x)];
+            out[size_t(y) * size_t(w) + size_t(x)] = s;
+        }
+    return out;
+}
+
+}  // namespace
+
+std::vector<float> luminance(const Image& img) {
+    std::vector<float> l(size_t(img.width) * size_t(img.height));
+    for (size_t i = 0; i < l.size(); ++i) {
+        const float* p = &img.pixels[i * size_t(img.channels)];
+        l[i] = img.channels >= 3 ? 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2] : p[0];
+    }
+    return l;
+}
+
+std::vector<float> ssim_map(const std::vector<float>& a, const std::vector<float>& b, int w, int h) {
+    const size_t n = size_t(w) * size_t(h);
+    if (a.size() != n || b.size() != n) throw std::invalid_argument("ssim_map: sizes differ");
+    const std::vector<double> g = gaussian();
+    std::vector<double> x(n), y(n), xx(n), yy(n), xy(n);
+    for (size_t i = 0; i < n; ++i) {
+        x[i] = a[i], y[i] = b[i];
+        xx[i] = x[i] * x[i], yy[i] = y[i] * y[i], xy[i] = x[i] * y[i];
+    }
+    const std::vector<double> mx = filter_valid(x, w, h, g), my = filter_valid(y, w, h, g),
+                              sxx = filter_valid(xx, w, h, g), syy = filter_valid(yy, w, h, g),
+                              sxy = filter_valid(xy, w, h, g);
+    const double c1 = kSsimK1 * kSsimK1, c2 = kSsimK2 * kSsimK2;  // dynamic range L = 1
+    const int r = kSsimWindow / 2;
+    std::vector<float> out(n, std::numeric_limits<float>::quiet_NaN());
+    for (int yy_ = r; yy_ < h - r; ++yy_)
+        for (int xx_ = r; xx_ < w - r; ++xx_) {
+            const size_t i = size_t(yy_) * size_t(w) + size_t(xx_);
+            const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cov = sxy[i] - mx[i] * my[i];
+            out[i] = float(((2 * mx[i] * my[i] + c1) * (2 * cov + c2)) /
+                           ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2)));
+        }
+    return out;
+}
+
+ImageMetrics compare_images(const Image& test, const Image& ref, const std::vector<uint8_t>& mask) {
+    require_same(test, ref, mask.size());
+    ImageMetrics m;
+    const std::vector<float> s = ssim_map(luminance(test), luminance(ref), test.width, test.height);
+    for (size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i]) continue;
+        ++m.pixels;
+        float worst = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(test.pixels[i * size_t(test.channels) + size_t(c)]) -
+                             double(ref.pixels[i * size_t(ref.channels) + size_t(c)]);
+            m.sum_sq += d * d;
+            worst = std::max(worst, float(std::fabs(d)));
+        }
+        m.over += worst * 255.0f > kOverLevels + 1e-3f;
+        if (!std::isnan(s[i])) {
+            m.sum_ssim += s[i];
+            ++m.ssim_windows;
+        }
+    }
+    return pool({m});
+}
+
+ImageMetrics pool(const std::vector<ImageMetrics>& frames) {
+    ImageMetrics p;
+    for (const ImageMetrics& f : frames) {
+        p.pixels += f.pixels;
+        p.ssim_windows += f.ssim_windows;
+        p.sum_ssim += f.sum_ssim;
+        p.sum_sq += f.sum_sq;
+        p.over += f.over;
+    }
+    p.ssim = p.ssim_windows ? p.sum_ssim / double(p.ssim_windows) : 1.0;
+    const double mse = p.pixels ? p.sum_sq / (3.0 * double(p.pixels)) : 0.0;
+    p.rmse = std::sqrt(mse);
+    p.psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+    p.share_over = p.pixels ? double(p.over) / double(p.pixels) : 0.0;
+    return p;
+}
+
+FlickerVsReference flicker_vs_reference(const std::vector<Image>& test, const std::vector<Image>& ref,
+                                        const std::vector<std::vector<uint8_t>>& masks) {
+    if (test.size() != ref.size() || test.size() != masks.size() || test.size() < 2)
+        throw std::invalid_argument("flicker needs at least two frames of both pictures and their masks");
+    FlickerVsReference f;
+    double excess = 0, tc = 0, rc = 0;
+    for (size_t k = 1; k < test.size(); ++k) {
+        for (const Image* im : {&test[k], &test[k - 1], &ref[k - 1]}) require_same(*im, ref[k], masks[k].size());
+        for (size_t i = 0; i < masks[k].size(); ++i) {
+            if (!masks[k][i] && !masks[k - 1][i]) continue;
+            ++f.samples;
+            for (int c = 0; c < 3; ++c) {
+                const auto at = [&](const Image& im) { return double(im.pixels[i * size_t(im.channels) + size_t(c)]); };
+                const double dt = at(test[k]) - at(test[k - 1]), dr = at(ref[k]) - at(ref[k - 1]);
+                excess += std::fabs(dt - dr);
+                tc += std::fabs(dt);
+                rc += std::fabs(dr);
+            }
+        }
+    }
+    const double n = 3.0 * double(std::max<size_t>(f.samples, 1));
+    f.excess = excess / n, f.test_change = tc / n, f.reference_change = rc / n;
+    return f;
+}
+
+Image difference_image(const Image& test, const Image& ref, const std::vector<uint8_t>& mask) {
+    require_same(test, ref, mask.size());
+    Image out;
+    out.width = test.width;
+    out.height = test.height;
+    out.channels = 4;
+    out.pixels.assign(mask.size() * 4, 1.0f);
+    for (size_t i = 0; i < mask.size(); ++i) {
+        float* o = &out.pixels[i * 4];
+        if (!mask[i]) {
+            o[0] = o[1] = o[2] = 0.9f;
+            continue;
+        }
+        float d = 0;
+        for (int c = 0; c < 3; ++c)
+            d = std::max(d, std::fabs(test.pixels[i * size_t(test.channels) + size_t(c)] -
+                                      ref.pixels[i * size_t(ref.channels) + size_t(c)]));
+        const float e = std::min(d * 255.0f / 64.0f, 1.0f);  // 0 white ... 16/255 red ... 64/255 black
+        o[0] = e < 0.25f ? 1.0f : 1.0f - (e - 0.25f) / 0.75f;
+        o[1] = e < 0.25f ? 1.0f - e / 0.25f * 1.0f : 0.0f;
+        o[2] = e < 0.125f ? 1.0f - e / 0.125f : 0.0f;
+    }
+    return out;
+}
+
+}  // namespace pathlet::quality

@@ -1,0 +1,61 @@
+#pragma once
+// Image fidelity against a reference picture (issue 42: transparency techniques against the exact
+// reference), over a mask of the pixels that matter (those either picture covers):
+//   ssim   windowed SSIM of Wang, Bovik, Sheikh & Simoncelli (IEEE TIP 2004) on luminance:
+//          an 11x11 Gaussian window (sigma 1.5, normalised), K1 0.01, K2 0.03, dynamic range 1,
+//          evaluated at every window that lies wholly inside the image (their 'valid' map),
+//          averaged over the windows whose centre pixel is in the mask (not one window over
+//          the whole frame, as some OIT comparisons did)
+//   rmse   root mean square difference over the mask's pixels and the R, G, B channels (0..1)
+//   psnr   10 log10(1 / mse) in dB (infinite for identical pictures)
+//   share_over  share of the mask's pixels with a channel more than 8/255 apart
+// Luminance: Rec. 709 weights on the stored (sRGB-encoded) values, what a viewer sees.
+#include "image_io.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pathlet::quality {
+
+struct ImageMetrics {
+    size_t pixels = 0;        // in the mask
+    size_t ssim_windows = 0;  // windows averaged into ssim
+    double ssim = 1.0, rmse = 0.0, psnr = 0.0, share_over = 0.0;
+    double sum_ssim = 0.0, sum_sq = 0.0;  // sums behind ssim and rmse, for pooling frames
+    size_t over = 0;
+};
+
+constexpr int kSsimWindow = 11;        // Wang et al.: 11 x 11
+constexpr double kSsimSigma = 1.5;
+constexpr double kSsimK1 = 0.01, kSsimK2 = 0.03;
+constexpr float kOverLevels = 8.0f;    // share_over: more than 8 of 255 levels apart
+
+// Rec. 709 luminance of an RGB(A) image, one float a pixel.
+std::vector<float> luminance(const Image& img);
+// The SSIM map: one value per pixel whose window lies inside the image (others NaN).
+std::vector<float> ssim_map(const std::vector<float>& a, const std::vector<float>& b, int width, int height);
+// Every measure of `test` against `reference` over `mask` (1 = measured; same size as the
+// images). Throws std::invalid_argument when the sizes differ.
+ImageMetrics compare_images(const Image& test, const Image& reference, const std::vector<uint8_t>& mask);
+// Frames pooled: ssim over all windows, rmse over all pixels, share over all pixels.
+ImageMetrics pool(const std::vector<ImageMetrics>& frames);
+
+// Flicker against the reference: pictures change from frame to frame as the pathlets advance,
+// so only the change beyond the reference's own is the technique's. Over the pixels either
+// picture covers in either frame, and the R, G, B channels:
+//   excess      mean |(T(t) - T(t-1)) - (R(t) - R(t-1))|
+//   test_change, reference_change   mean |T(t) - T(t-1)| and mean |R(t) - R(t-1)|
+struct FlickerVsReference {
+    double excess = 0, test_change = 0, reference_change = 0;
+    size_t samples = 0;  // pixel-frame pairs
+};
+// `masks[k]`: frame k's pixels either picture covers. Needs at least two frames of one size.
+FlickerVsReference flicker_vs_reference(const std::vector<Image>& test, const std::vector<Image>& reference,
+                                        const std::vector<std::vector<uint8_t>>& masks);
+
+// The per-pixel difference as a heat map: white 0, through yellow and red (16/255) to black
+// (64/255 and more) on measured pixels, light grey elsewhere.
+Image difference_image(const Image& test, const Image& reference, const std::vector<uint8_t>& mask);
+
+}  // namespace pathlet::quality

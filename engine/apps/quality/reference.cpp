@@ -1,0 +1,133 @@
+#include "reference.hpp"
+
+#include "executor.hpp"
+#include "graph/graph_model.hpp"
+#include "image_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace pathlet::quality {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// What is read of a graph after every frame: its picture and its coverage.
+struct Reads {
+    std::string name, picture, coverage;
+};
+
+bool is_depth(const json& g, const std::string& resource) {
+    if (!g.contains("resources") || !g["resources"].contains(resource)) return false;
+    const std::string f = g["resources"][resource].value("format", "");
+    return f == "depth24" || f == "depth32f";
+}
+
+Reads reads_of(const std::string& path) {
+    const json g = expanded_graph_json(path);
+    Reads r;
+    r.name = g.value("name", fs::path(path).stem().string());
+    if (!g.contains("outputs") || g["outputs"].empty() || !g["outputs"][0].contains("resource"))
+        throw std::invalid_argument(path + ": the graph has no output to compare");
+    r.picture = g["outputs"][0]["resource"].get<std::string>();
+    // The depth the wall is tested against is where lines are (every OIT graph composes so) ...
+    for (const json& p : g["passes"])
+        if (p.value("type", "") == "aorta_backface" && p.contains("inputs") && p["inputs"].contains("depth") &&
+            is_depth(g, p["inputs"]["depth"].get<std::string>()))
+            r.coverage = p["inputs"]["depth"].get<std::string>();
+    // ... else a line pass's depth output (coverage, depth).
+    for (const json& p : g["passes"]) {
+        if (!r.coverage.empty() || !p.contains("outputs")) break;
+        for (const char* pin : {"coverage", "depth"})
+            if (p["outputs"].contains(pin) && is_depth(g, p["outputs"][pin].get<std::string>())) {
+                r.coverage = p["outputs"][pin].get<std::string>();
+                break;
+            }
+    }
+    if (r.coverage.empty())
+        throw std::invalid_argument(path + ": no coverage to measure over (no depth read by an aorta_backface pass, "
+                                           "no line pass with a depth24 'coverage' or 'depth' output)");
+    return r;
+}
+
+struct Frames {
+    std::vector<Image> pictures;
+    std::vector<std::vector<uint8_t>> covered;
+};
+
+Frames render_frames(Runtime& rt, const Scene& scene, const std::string& path, const Reads& reads,
+                     const ReferenceOptions& o, const std::vector<std::string>& own_sets, const TimeRange& time) {
+    RenderOptions opt;
+    opt.graph_path = path;
+    opt.sets = o.sets;
+    opt.sets.insert(opt.sets.end(), own_sets.begin(), own_sets.end());
+    opt.size = o.size;
+    opt.time = time;
+    opt.write_images = false;
+    opt.quiet = true;
+    opt.warmup = 0;
+    opt.keep = {reads.picture, reads.coverage};
+    Frames f;
+    render(rt, scene, opt, [&](const Executor& ex, size_t) {
+        const Texture pic = ex.texture(reads.picture), cov = ex.texture(reads.coverage);
+        f.pictures.push_back(read_texture(pic.id, pic.width, pic.height, 0, 4));
+        std::vector<float> depth(size_t(cov.width) * size_t(cov.height));
+        glGetTextureImage(cov.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(depth.size() * sizeof(float)), depth.data());
+        std::vector<uint8_t> mask(depth.size());
+        for (int y = 0; y < cov.height; ++y)  // GL rows bottom-up, images top-down
+            for (int x = 0; x < cov.width; ++x)
+                mask[size_t(y) * size_t(cov.width) + size_t(x)] =
+                    depth[size_t(cov.height - 1 - y) * size_t(cov.width) + size_t(x)] < 1.0f;
+        f.covered.push_back(std::move(mask));
+    });
+    return f;
+}
+
+}  // namespace
+
+ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const ReferenceOptions& o) {
+    const Reads test = reads_of(o.graph_path), ref = reads_of(o.reference_path);
+    const TimeRange time = o.time ? *o.time : default_quality_time(scene);
+    if (!o.time) std::fprintf(stderr, "note: %s\n", picked_time_note(time, scene, "11 frames from the middle").c_str());
+    const Frames a = render_frames(rt, scene, o.graph_path, test, o, {}, time);
+    const Frames b = render_frames(rt, scene, o.reference_path, ref, o, o.reference_sets, time);
+    if (a.pictures.size() != b.pictures.size() || a.pictures.empty())
+        throw std::runtime_error("the graphs rendered " + std::to_string(a.pictures.size()) + " and " +
+                                 std::to_string(b.pictures.size()) + " frames");
+    ReferenceResult r;
+    r.graph = test.name;
+    r.reference = ref.name;
+    r.frames = a.pictures.size();
+    const std::vector<double> times = time.times();
+    r.first_time = times.front();
+    r.last_time = times[std::min(times.size(), r.frames) - 1];
+    std::vector<std::vector<uint8_t>> either(r.frames);
+    for (size_t k = 0; k < r.frames; ++k) {
+        either[k] = a.covered[k];
+        for (size_t i = 0; i < either[k].size(); ++i) either[k][i] |= b.covered[k][i];
+        r.per_frame.push_back(compare_images(a.pictures[k], b.pictures[k], either[k]));
+    }
+    r.metrics = pool(r.per_frame);
+    if (r.frames >= 2) r.flicker = flicker_vs_reference(a.pictures, b.pictures, either);
+    if (!o.out_dir.empty()) {
+        fs::create_directories(o.out_dir);
+        const std::string stem = o.out_dir + "/" + r.graph + "_vs_" + r.reference;
+        for (size_t k = 0; k < r.frames; ++k) {
+            char name[32];
+            std::snprintf(name, sizeof name, "_diff_%05zu.png", k);
+            r.images.push_back(stem + name);
+            write_image(r.images.back(), difference_image(a.pictures[k], b.pictures[k], either[k]));
+        }
+        r.images.push_back(o.out_dir + "/" + r.graph + "_last.png");
+        write_image(r.images.back(), a.pictures.back());
+        r.images.push_back(o.out_dir + "/" + r.reference + "_last.png");
+        write_image(r.images.back(), b.pictures.back());
+    }
+    return r;
+}
+
+}  // namespace pathlet::quality

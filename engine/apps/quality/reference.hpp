@@ -1,0 +1,44 @@
+#pragma once
+// `pathlet quality GRAPH --reference REFGRAPH` as a function (also Python's quality(...,
+// reference=...)): both graphs rendered over the same times at the same size with the same
+// camera (the data's framing) and --set overrides, their pictures (each graph's first output)
+// compared frame by frame over the pixels either covers (its coverage: the depth the wall pass
+// reads, or a line pass's depth output), with image_metrics.hpp's measures pooled over the
+// frames and the flicker against the reference's own change. Optionally the difference images.
+#include "image_metrics.hpp"
+
+#include "renderer.hpp"
+#include "runtime.hpp"
+
+#include <pathlet/scene.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pathlet::quality {
+
+struct ReferenceOptions {
+    std::string graph_path, reference_path;  // graph files (shipped names resolved by the caller)
+    std::vector<std::string> sets;           // --set overrides, given to both graphs
+    std::vector<std::string> reference_sets; // the reference's own, after `sets` (Python's Graph.set)
+    glm::ivec2 size{320, 180};
+    std::optional<TimeRange> time;  // none: default_quality_time(scene), said on stderr
+    std::string out_dir;            // non-empty: difference images (and the last pair) written here
+};
+
+struct ReferenceResult {
+    std::string graph, reference;
+    size_t frames = 0;
+    double first_time = 0, last_time = 0;
+    ImageMetrics metrics;                  // pooled over the frames
+    std::vector<ImageMetrics> per_frame;
+    std::optional<FlickerVsReference> flicker;  // with two frames or more
+    std::vector<std::string> images;       // files written to out_dir
+};
+
+// Throws GraphError (bad graph or --set), std::invalid_argument (a graph without a coverage or
+// with an output that is no colour image) and whatever rendering throws.
+ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const ReferenceOptions& opt);
+
+}  // namespace pathlet::quality

@@ -1,0 +1,87 @@
+// `pathlet quality GRAPH --reference REFGRAPH` end to end (issue 42), through the command on
+// llvmpipe: the exact reference against depth peeling agrees (ssim 1 within float noise, no
+// pixel over 8/255), the study's variant 2 (AO multiplied in, 32 fragments) does not, --out
+// gets one difference image per frame and the last pictures, and bad use is an error naming it.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int rc = -1;
+    std::string out;
+    std::map<std::string, double> v;  // "ssim", "psnr", "rmse", "share", "flicker"
+};
+
+CliRun quality(const std::string& args) {
+    const std::string cmd = std::string(PATHLET_CLI) + " quality " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    CliRun r;
+    char line[1024];
+    while (p && fgets(line, sizeof line, p)) {
+        r.out += line;
+        const std::string s(line);
+        for (const auto& [key, prefix] : std::map<std::string, std::string>{{"ssim", "ssim "},
+                                                                             {"psnr", "psnr "},
+                                                                             {"rmse", "rmse "},
+                                                                             {"share", "share over 8/255 "},
+                                                                             {"flicker", "flicker vs reference "}})
+            if (s.rfind(prefix, 0) == 0) r.v[key] = std::stod(s.substr(prefix.size()));
+    }
+    const int st = p ? pclose(p) : -1;
+    r.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+const std::string kCommon = " --phantom small --size 160x90 --time 2:2.08:0.04 --set overlay=false";
+
+}  // namespace
+
+TEST(QualityReference, ExactAgainstDepthPeelingAgreesAndWritesTheDifferenceImages) {
+    const fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "quality_reference_out";
+    fs::remove_all(out);
+    const CliRun r = quality("variant2_exact --reference variant2_depth_peel" + kCommon + " --out " + out.string());
+    ASSERT_EQ(r.rc, 0) << r.out;
+    ASSERT_EQ(r.v.size(), 5u) << r.out;
+    EXPECT_GT(r.v.at("ssim"), 0.9999) << r.out;
+    EXPECT_LT(r.v.at("rmse"), 1.0 / 255.0) << r.out;
+    EXPECT_EQ(r.v.at("share"), 0.0) << r.out;
+    EXPECT_LT(r.v.at("flicker"), 0.5 / 255.0) << r.out;
+    EXPECT_NE(r.out.find("variant2_exact vs variant2_depth_peel: 3 frames 160x90"), std::string::npos) << r.out;
+    for (const char* f : {"variant2_exact_vs_variant2_depth_peel_diff_00000.png",
+                          "variant2_exact_vs_variant2_depth_peel_diff_00002.png", "variant2_exact_last.png",
+                          "variant2_depth_peel_last.png"})
+        EXPECT_TRUE(fs::exists(out / f)) << f << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(out / "variant2_exact_vs_variant2_depth_peel_diff_00003.png"));
+}
+
+// The study's variant 2 multiplies LineAO into the colour and keeps 32 fragments: not the
+// reference's picture, and every measure says so.
+TEST(QualityReference, TheStudysVariant2IsFarFromTheReference) {
+    const CliRun r = quality("variant2_oit --reference variant2_exact" + kCommon);
+    ASSERT_EQ(r.rc, 0) << r.out;
+    EXPECT_LT(r.v.at("ssim"), 0.99) << r.out;
+    EXPECT_GT(r.v.at("rmse"), 2.0 / 255.0) << r.out;
+    EXPECT_LT(r.v.at("psnr"), 45.0) << r.out;
+    EXPECT_GT(r.v.at("share"), 0.5) << r.out;  // percent
+    EXPECT_GT(r.v.at("flicker"), 0.0) << r.out;
+}
+
+TEST(QualityReference, BadUseIsAnErrorNamingIt) {
+    CliRun r = quality("variant2_exact --reference no_such_graph" + kCommon);
+    EXPECT_EQ(r.rc, 2) << r.out;
+    EXPECT_NE(r.out.find("no_such_graph"), std::string::npos) << r.out;
+    r = quality("variant2_exact --reference variant2_depth_peel --transparency" + kCommon);
+    EXPECT_EQ(r.rc, 2) << r.out;
+    EXPECT_NE(r.out.find("--reference"), std::string::npos) << r.out;
+    // A graph without coverage to measure over (no wall depth, no line pass depth output).
+    r = quality("demo_blur --reference variant2_exact" + kCommon);
+    EXPECT_NE(r.rc, 0) << r.out;
+    EXPECT_NE(r.out.find("no coverage"), std::string::npos) << r.out;
+}
