@@ -85,6 +85,19 @@ TEST(CliMistakes, AUsageErrorNamesItsCommandOnce) {
     }
 }
 
+TEST(CliMistakes, DataMessagesNameTheUsersOptionsNotTheCppOnes) {
+    const std::string d = user_dir("data_messages");
+    write(d + "/rows.txt", "0 0 0 1 0 0 2 0 0\n0 1 0 1 1 0 2 1 0\n");
+    CliRun r = pathlet_cli("info " + d + "/rows.txt");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE((r.out + r.err).find("--time-step SECONDS"), std::string::npos) << r.out << r.err;
+    EXPECT_EQ((r.out + r.err).find("LoadOptions"), std::string::npos) << r.out << r.err;
+    r = pathlet_cli("info " + src("tests/engine/data/two_lines.vtk") + " --time-array tme");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("no point array named 'tme' (did you mean 'time'?) (--time-array"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("LoadOptions"), std::string::npos) << r.err;
+}
+
 TEST(CliMistakes, ATimeOutsideTheDataIsAnErrorNamingItsSpanUnlessEmptyFramesAreAskedFor) {
     const std::string d = user_dir("time");
     for (const std::string t : {"50", "2:50:10", "-3"}) {

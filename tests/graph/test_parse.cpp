@@ -1,6 +1,7 @@
 #include "fake_registry.hpp"
 #include "io/limits.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <filesystem>
 

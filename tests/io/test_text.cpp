@@ -2,6 +2,7 @@
 // files read with the limits every input gets.
 #include "../support/error_text.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <pathlet/scene.hpp>
 

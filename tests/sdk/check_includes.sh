@@ -63,5 +63,21 @@ for f in engine/sdk/src/*.cpp engine/sdk/src/*.hpp engine/lines/src/*.cpp engine
     esac
   done <"$f"
 done
-[ "$bad" -eq 0 ] && echo "check_includes: every pass and plugin includes only its own folder and the SDK; so does the SDK"
+# The ground floor (issue 41): the SDK's CPU-only headers every layer builds on (text.hpp,
+# scene.hpp) and the engine's file and text utilities (engine/data/util) include only system and
+# third-party headers, nothing of a layer above them.
+for f in engine/sdk/include/pathlet/text.hpp engine/sdk/include/pathlet/scene.hpp engine/data/util/*.hpp; do
+  [ -f "$f" ] || continue
+  n=0
+  re='^[[:space:]]*#[[:space:]]*include[[:space:]]*(["<])([^">]+)[">]'
+  while IFS= read -r line; do
+    n=$((n + 1))
+    [[ "$line" =~ $re ]] || continue
+    delim=${BASH_REMATCH[1]} inc=${BASH_REMATCH[2]}
+    case "$delim$inc" in
+      '<'pathlet/*|'"'*) report "$f" "$n" "includes $inc: the ground floor (std, GLM, JSON only) reaches up into no layer" ;;
+    esac
+  done <"$f"
+done
+[ "$bad" -eq 0 ] && echo "check_includes: every pass and plugin includes only its own folder and the SDK; so does the SDK; the ground floor includes no layer above it"
 exit "$bad"

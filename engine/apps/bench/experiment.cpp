@@ -4,6 +4,7 @@
 
 #include "renderer.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <pathlet/scene.hpp>
 

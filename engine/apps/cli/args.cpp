@@ -3,6 +3,7 @@
 #include "bench/shard.hpp"
 #include "renderer.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <algorithm>
 #include <cmath>

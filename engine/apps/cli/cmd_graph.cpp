@@ -13,6 +13,7 @@
 #include "util/atomic_file.hpp"
 
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -5,6 +5,7 @@
 #include "graph/hook_params.hpp"
 #include "runtime.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <cstdio>
 #include <filesystem>

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "graph/graph_model.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <algorithm>
 #include <cstdio>

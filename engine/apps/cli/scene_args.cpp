@@ -9,6 +9,7 @@
 #include "io/units.hpp"
 #include "phantom/phantom.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <algorithm>
 #include <cstdio>

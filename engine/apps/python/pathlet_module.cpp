@@ -23,6 +23,7 @@
 #include "renderer.hpp"
 #include "util/output_check.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

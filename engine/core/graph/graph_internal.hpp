@@ -2,6 +2,7 @@
 #pragma once
 
 #include "../formats.hpp"
+#include <pathlet/text.hpp>
 #include "../pass_registry.hpp"
 #include "graph_model.hpp"
 #include "util/text.hpp"

@@ -4,6 +4,7 @@
 
 #include "byte_reader.hpp"
 #include "util/text.hpp"
+#include <pathlet/text.hpp>
 
 #include <algorithm>
 #include <cmath>

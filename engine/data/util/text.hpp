@@ -1,9 +1,12 @@
-// Text helpers every part of Pathlet shares: lists in messages, quoting (for messages, POSIX
-// shells and CSV), "did you mean", and JSON files read with the limits every input file gets.
-// One copy of each, so a fix (a quote inside an argument, a file too deep) reaches every caller.
+// The engine's text helpers: splitting, quoting (for messages, POSIX shells and CSV), JSON
+// pointers, and JSON files read with the limits every input file gets. One copy of each, so a
+// fix (a quote inside an argument, a file too deep) reaches every caller.
+//
+// Lists in messages and "did you mean" (join, closest_match, did_you_mean) are the SDK's,
+// <pathlet/text.hpp>: the ground floor every layer builds on (std only), so passes, the SDK and
+// the engine share one copy. This header stands on its own and does not re-export it; a file
+// that uses those includes <pathlet/text.hpp> itself.
 #pragma once
-
-#include <pathlet/text.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -16,7 +19,6 @@
 namespace pathlet::text {
 
 // ---- lists ------------------------------------------------------------------------------
-// join (and closest_match, did_you_mean below) are the SDK's: <pathlet/text.hpp>.
 // Pieces between `sep`; empty pieces are dropped ("a,,b" -> a, b).
 std::vector<std::string> split(const std::string& s, char sep);
 
