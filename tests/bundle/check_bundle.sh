@@ -76,7 +76,7 @@ test -s "$PNG" || fail "no picture"
 ! grep -q "warning" "$WORK/render.txt" || { cat "$WORK/render.txt"; fail "warnings in a plain render"; }
 if [ -n "$REFERENCE" ]; then
   env -i HOME="$WORK/user" "$REFERENCE" render variant1_lineao --data "$DATA" --time 1 --size 96x64 \
-    --out "$WORK/reference" --quiet >/dev/null 2>&1
+    --out "$WORK/reference" --quiet >"$WORK/reference.txt" 2>&1 || { cat "$WORK/reference.txt"; fail "the reference render ($REFERENCE)"; }
   same_pixels "$PNG" "$WORK/reference/variant1_lineao/00000.png" || fail "the bundle's picture differs from the build tree's"
 fi
 # A node that has none of lib/compat's libraries: the bundle's copies load and give the same picture.
