@@ -156,6 +156,9 @@ public:
         if (!timeless_ && !direction_) {  // the range the legend shows (or would): tests check it against the data
             ctx.stat("legend_min", double(legend_min_));
             ctx.stat("legend_max", double(legend_max_));
+            ctx.stat("legend_ticks", double(ticks_.size()));  // what the bar is labelled with
+            if (!ticks_.empty()) ctx.stat("legend_tick_first", double(ticks_.front()));
+            if (ticks_.size() > 1) ctx.stat("legend_tick_step", double(ticks_[1] - ticks_[0]));
         }
         if (!p.b("show")) return;
         ctx.bind_framebuffer({"final"});
@@ -196,7 +199,7 @@ public:
             const float bar_h = std::round(std::max(0.32f * float(size.y), 6.0f * f));
             float labels_w = 0.0f;
             for (const Label& l : tick_labels_) labels_w = std::max(labels_w, float(l.width));
-            const float block_w = std::max(bar_w + tick + gap + labels_w, float(unit_label_.width));
+            const float block_w = bar_w + tick + gap + labels_w;  // the title may reach further left
             const glm::vec4 data = data_rect(ctx);  // x0, y0, x1, y1 from the top left
             const float x0 = std::round(std::clamp(data.z + 1.5f * f, m, float(size.x) - m - block_w));
             const float x1 = x0 + bar_w;
@@ -214,7 +217,8 @@ public:
                 const Label& l = tick_labels_[i];
                 text(l, x1 + tick + gap, y - 0.5f * float(l.ascent), ink);
             }
-            text(unit_label_, x0, y0 - gap - float(unit_label_.height), ink);
+            text(unit_label_, std::max(m, std::min(x0, float(size.x) - m - float(unit_label_.width))),
+                 y0 - gap - float(unit_label_.height), ink);
         }
     }
 

@@ -92,3 +92,92 @@ TEST(Framing, TallVesselWithItsWallFillsTheFrame) {
     if (lines.empty() || wall.empty()) GTEST_SKIP() << "real data absent (PATHLET_REAL_DATA_DIR/vmtk-abdominal-aorta)";
     expect_framed("vmtk", "--data " + lines + " --streamlines --mesh " + wall);
 }
+
+namespace {
+
+struct Box {
+    int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;
+    bool empty() const { return x1 < 0; }
+    void add(int x, int y) { x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y); }
+};
+
+// The phantom at t = 1 s with and without the overlay, and the timing table's text.
+struct Shot {
+    Image with, without;
+    std::string table;
+};
+Shot shot(const std::string& name, const std::string& size) {
+    const fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "framing" / name;
+    fs::remove_all(out);
+    Shot s;
+    for (const bool overlay : {true, false}) {
+        const fs::path dir = out / (overlay ? "with" : "without");
+        const CliRun r = pathlet_cli("render variant1_lineao --phantom small --time 1 --quiet --size " + size +
+                                     (overlay ? "" : " --set overlay=false") + " --out " + dir.string());
+        EXPECT_EQ(r.code, 0) << r.err;
+        (overlay ? s.with : s.without) = read_image((dir / "variant1_lineao" / "00000.png").string());
+        if (overlay) s.table = r.out;
+    }
+    return s;
+}
+
+double stat(const std::string& table, const std::string& name) {
+    const size_t at = table.find(name + " ");
+    return at == std::string::npos ? -1.0 : std::stod(table.substr(at + name.size() + 1));
+}
+
+}  // namespace
+
+// The legend stands beside the data (not at the frame's edge) and is labelled with 3 to 5
+// round values inside the colour map's range.
+TEST(Framing, LegendStandsBesideTheDataWithRoundTicks) {
+    const Shot s = shot("legend", "480x270");
+    Box data, legend;
+    for (int y = 0; y < s.with.height; ++y)
+        for (int x = 0; x < s.with.width; ++x) {
+            float bg = 0, ov = 0;
+            for (int c = 0; c < 3; ++c) {
+                bg = std::max(bg, std::fabs(s.without.at(x, y, c) - s.without.at(0, 0, c)));
+                ov = std::max(ov, std::fabs(s.with.at(x, y, c) - s.without.at(x, y, c)));
+            }
+            if (bg > 8.0f / 255.0f) data.add(x, y);
+            if (ov > 8.0f / 255.0f && x > s.with.width / 3) legend.add(x, y);  // right of the time label
+        }
+    ASSERT_FALSE(data.empty());
+    ASSERT_FALSE(legend.empty());
+    EXPECT_GT(legend.x0, data.x1) << "the legend covers the data";
+    EXPECT_LT(legend.x0 - data.x1, s.with.width / 8) << "the legend stands far from the data (at the frame's edge?)";
+    EXPECT_LT(legend.x1, s.with.width - 1);
+
+    const double n = stat(s.table, "legend_ticks"), first = stat(s.table, "legend_tick_first"),
+                 step = stat(s.table, "legend_tick_step"), lo = stat(s.table, "legend_min"), hi = stat(s.table, "legend_max");
+    EXPECT_GE(n, 3) << s.table;
+    EXPECT_LE(n, 5) << s.table;
+    EXPECT_GE(first, lo);
+    EXPECT_LE(first + (n - 1) * step, hi);
+    const double mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
+    EXPECT_TRUE(std::fabs(mantissa - 1) < 1e-9 || std::fabs(mantissa - 2) < 1e-9 || std::fabs(mantissa - 2.5) < 1e-9 ||
+                std::fabs(mantissa - 5) < 1e-9)
+        << "step " << step;
+    EXPECT_NEAR(std::remainder(first, step), 0.0, 1e-9 * step) << "ticks on multiples of the step";
+}
+
+// Text scales with the output height: legible at 480x270 (the time label at least 9 px tall),
+// not huge at 4K (less than 3 % of the height, and less than 4x the 270-line label for 8x the
+// lines).
+TEST(Framing, TextIsLegibleSmallAndModestAt4K) {
+    auto label_height = [](const Shot& s) {
+        Box b;
+        for (int y = 0; y < s.with.height / 4; ++y)
+            for (int x = 0; x < s.with.width / 4; ++x) {
+                float d = 0;
+                for (int c = 0; c < 3; ++c) d = std::max(d, std::fabs(s.with.at(x, y, c) - s.without.at(x, y, c)));
+                if (d > 0.25f) b.add(x, y);
+            }
+        return b.empty() ? 0 : b.y1 - b.y0 + 1;
+    };
+    const int small = label_height(shot("text_270", "480x270")), big = label_height(shot("text_2160", "3840x2160"));
+    EXPECT_GE(small, 9) << "the time label at 480x270";
+    EXPECT_LT(big, 0.03 * 2160) << "the time label at 3840x2160";
+    EXPECT_LT(big, 4 * small) << small << " px at 270 lines, " << big << " px at 2160";
+}
