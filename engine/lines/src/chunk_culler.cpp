@@ -229,7 +229,9 @@ void ChunkCuller::draw(PassContext& ctx, const ShaderProgram& prog, const Frame&
     upload_lines(scene, f);
     const uint32_t chunks = uint32_t(chunks_);
     const bool two_phases = f.depth != 0;
-    const SavedBindings saved(kBindings, kTextureUnit, kImageUnit);
+    // The pyramid's texture and image units only where it is built (two phases).
+    const SavedBindings saved(kBindings, two_phases ? kTextureUnit : SavedBindings::kNone,
+                              two_phases ? kImageUnit : SavedBindings::kNone);
     bind_buffers(scene);
 
     ShaderProgram& c = ctx.program({"line_cull_chunks.comp"}, defines());

@@ -102,7 +102,7 @@ void VolumeAo::bind(PassContext& ctx, const ShaderProgram& prog) {
     }
     if (copy_on_gpu(ctx)) {
         // Buffer to texture in a dispatch (line_density_texture.comp), with the pass's bindings kept.
-        const SavedBindings saved(0, 0, 0);
+        const SavedBindings saved(0, SavedBindings::kNone, 0);  // image unit 0 only
         ShaderProgram& convert = ctx.program({"line_density_texture.comp"}, density_defines(ctx));
         convert.use();
         convert.set_unit("u_density_target", 0);
