@@ -3,6 +3,7 @@
 // before its fence may have signalled, and then every copy is, in order, with its tag.
 #include "frame_capture.hpp"
 #include "frames/readback_ring.hpp"
+#include "profiler/profiler.hpp"
 
 #include <pathlet/gpu_fence.hpp>
 #include <pathlet/gpu_readback.hpp>
@@ -202,6 +203,37 @@ TEST(ReadbackRing, PollTakesWhatIsReadyOnceTheLatencyHasPassed) {
     }
     ring.drain();
     EXPECT_EQ(done, (std::vector<int>{0, 1, 2, 3, 4, 5}));
+}
+
+
+// The viewer's timing: ready timer queries are collected without waiting, the rest carry over.
+TEST(Profiler, CollectReadyNeverWaitsAndFramesInFlightCarryOver) {
+    const int k = 3;
+    Latency latency(k);
+    Runtime& rt = test_runtime();
+    Profiler p;
+    p.set_warmup_frames(0);
+    p.init(TimingBackend::GlTimestamp, rt.gl->renderer());
+    ASSERT_EQ(p.backend(), TimingBackend::GlTimestamp) << p.backend_description();
+    advance_to_multiple(k);
+    for (int f = 0; f < 5; ++f) {  // frames issued at 1..5 after a multiple of k
+        advance_gpu_frame();
+        p.begin_frame(uint64_t(f));
+        p.begin_pass("clear");
+        glClear(GL_COLOR_BUFFER_BIT);
+        p.end_pass();
+        p.end_frame();
+    }
+    glFinish();
+    advance_gpu_frame();  // a multiple of k: frames issued at least k frames before are due
+    p.collect_ready();
+    EXPECT_EQ(p.frames_timed(), 3u) << "the frames issued 1..3 after are due at 6, the two after them not yet";
+    p.forget_timed();
+    EXPECT_EQ(p.frames_recorded(), 2u) << "frames still in flight carry over";
+    p.flush();  // waits for them (the end of a run)
+    EXPECT_EQ(p.frames_timed(), 2u);
+    EXPECT_EQ(p.gpu_frames_dropped(), 0u);
+    p.release_gl();
 }
 
 }  // namespace
