@@ -328,3 +328,15 @@ print(pathlet.closed())
     lines = r.stdout.strip().splitlines()
     assert len(lines) == 4 and all(l.startswith("closed: pathlet.close() was called") for l in lines[:3]), r.stdout
     assert lines[3] == "True"
+
+
+def test_render_lists_the_frames_that_lost_fragments_as_the_command_does(pathlet, scene, capfd):
+    # Node memory capped: every frame loses fragments, is returned anyway, and stderr's last line
+    # lists them as `pathlet render`'s does (issue 40).
+    g = pathlet.Graph("variant2_oit").set("fill_list.max_memory_mb=0.01", window=2)
+    r = pathlet.render(g, scene, time="2:2.3:0.1", size=(96, 72))
+    assert r.rgba.shape[0] == 4
+    err = capfd.readouterr().err.splitlines()
+    assert err and err[-1] == "incomplete frames: 4 of 4 (0, 1, 2, 3)", err[-3:]
+    pathlet.render("variant2_oit", scene, time="2:2.3:0.1", size=(96, 72))
+    assert "incomplete frames" not in capfd.readouterr().err
