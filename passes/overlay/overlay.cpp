@@ -156,10 +156,13 @@ public:
         if (!timeless_ && !direction_) {  // the range the legend shows (or would): tests check it against the data
             ctx.stat("legend_min", double(legend_min_));
             ctx.stat("legend_max", double(legend_max_));
+            ctx.stat("speed_min", double(legend_min_));  // the values in use where the parameters say auto
+            ctx.stat("speed_max", double(legend_max_));
             ctx.stat("legend_ticks", double(ticks_.size()));  // what the bar is labelled with
             if (!ticks_.empty()) ctx.stat("legend_tick_first", double(ticks_.front()));
             if (ticks_.size() > 1) ctx.stat("legend_tick_step", double(ticks_[1] - ticks_[0]));
         }
+        ctx.stat("font_px", double(font_px_));
         if (!p.b("show")) return;
         ctx.bind_framebuffer({"final"});
         glEnable(GL_BLEND);

@@ -3,6 +3,7 @@
 // render's framing; playback loops, stops at the end without loop, scrubs within the span.
 #include "view/file_watch.hpp"
 #include "view/orbit_view.hpp"
+#include "view/panel_values.hpp"
 
 #include <gtest/gtest.h>
 
@@ -88,4 +89,16 @@ TEST(FileWatch, ReportsWrittenAppearingAndVanishingFilesOnce) {
     const auto files = pathlet::view::graph_and_shader_files(a, {d.string()});
     EXPECT_NE(std::find(files.begin(), files.end(), b), files.end()) << "shader files of the folders are watched";
     std::filesystem::remove_all(d);
+}
+
+// An "auto" slider (0 or below) shows the value the pass uses, which it reports as a stat named
+// like the parameter; a value set by hand shows as it is (issue 41: auto sliders showed 0).
+TEST(PanelValues, AutoSlidersShowTheValueInUse) {
+    const view::InUse in_use = {{"line_width", 1.109375}, {"overlay.speed_min", 13.86}, {"overlay.font_px", 18}};
+    EXPECT_EQ(view::slider_format("line_width", 0.0, false, in_use), "auto (1.109)");
+    EXPECT_EQ(view::slider_format("overlay.speed_min", 0.0, false, in_use), "auto (13.86)");
+    EXPECT_EQ(view::slider_format("overlay.speed_min", -1.0, false, in_use), "auto (13.86)");
+    EXPECT_EQ(view::slider_format("overlay.font_px", 0.0, true, in_use), "auto (18)");
+    EXPECT_EQ(view::slider_format("line_width", 2.5, false, in_use), "%.4g") << "set by hand";
+    EXPECT_EQ(view::slider_format("window", 0.0, false, in_use), "%.4g") << "no value in use reported";
 }

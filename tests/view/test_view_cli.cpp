@@ -194,3 +194,30 @@ TEST(ViewCli, SwitchingToAGraphWithAnUntrustedPluginFolderLoadsNothing) {
     EXPECT_TRUE(fs::exists(d / "kept.png"));
     fs::remove_all(d);
 }
+
+// The panels leave the overlay's time label (top left) to be read (issue 41: they covered it).
+TEST(ViewCli, ThePanelsLeaveTheTimeLabelVisible) {
+    PATHLET_REQUIRE_TOOLS("Xvfb");
+    test::Xvfb x;
+    ASSERT_TRUE(x.ok()) << "Xvfb did not start";
+    fs::path d = work();
+    std::string err;
+    ASSERT_EQ(cli("view variant1_lineao --phantom small --size 640x360 --time 1 --exit-after 3 --screenshot " +
+                      (d / "live.png").string() + " --screenshot-window " + (d / "window.png").string(),
+                  &err),
+              0)
+        << err;
+    const Image live = read_image((d / "live.png").string()), window = read_image((d / "window.png").string());
+    ASSERT_EQ(window.width, live.width);
+    double label = 0, panels = 0;
+    for (int y = 0; y < live.height; ++y)
+        for (int xx = 0; xx < live.width; ++xx)
+            for (int c = 0; c < 3; ++c) {
+                const double diff = std::fabs(window.at(xx, y, c) - live.at(xx, y, c));
+                if (xx < live.width / 4 && y < live.height / 10) label = std::max(label, diff);  // "t = 1.00 s"
+                else panels = std::max(panels, diff);
+            }
+    EXPECT_LE(label, 1.0 / 255.0) << "a panel covers the time label";
+    EXPECT_GT(panels, 0.2) << "no panels in the window";
+    fs::remove_all(d);
+}

@@ -1,11 +1,14 @@
 #include "view/view_panels.hpp"
 
+#include "view/panel_values.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 namespace pathlet::view {
 
@@ -58,6 +61,20 @@ struct Deferred {
     }
 };
 
+// The values in use (view/panel_values.hpp) from the passes' stats, kept between the
+// profiler's windows of 30 frames.
+InUse& in_use() {
+    static InUse values;
+    return values;
+}
+void update_in_use(ViewSession& session) {
+    for (const auto& p : session.profiler().passes())
+        for (const auto& [name, value] : p.stats) {
+            in_use()[p.name + "." + name] = value;
+            in_use()[name] = value;
+        }
+}
+
 // One widget for one declared parameter; a finished change is queued as a --set.
 void param_widget(const std::string& set_name, const std::string& label, const ParamDecl& d, const json& v,
                   PanelActions& out) {
@@ -78,15 +95,17 @@ void param_widget(const std::string& set_name, const std::string& label, const P
         case ParamType::Float: {
             const bool is_int = d.type == ParamType::Int;
             float f = edit.get(0, float(v.get<double>()));
+            // "auto" (0 or below) shows the value in use, not 0, where the pass reports it.
+            const std::string format = slider_format(set_name, double(f), is_int, in_use());
             if (is_int) {
                 int i = int(std::lround(f));
-                if (bounded) ImGui::SliderInt(label.c_str(), &i, int(lo), int(hi));
-                else ImGui::DragInt(label.c_str(), &i, 1.0f, int(std::max(lo, -2e9f)), int(std::min(hi, 2e9f)));
+                if (bounded) ImGui::SliderInt(label.c_str(), &i, int(lo), int(hi), format.c_str());
+                else ImGui::DragInt(label.c_str(), &i, 1.0f, int(std::max(lo, -2e9f)), int(std::min(hi, 2e9f)), format.c_str());
                 f = float(i);
             } else if (bounded) {
-                ImGui::SliderFloat(label.c_str(), &f, lo, hi, "%.4g");
+                ImGui::SliderFloat(label.c_str(), &f, lo, hi, format.c_str());
             } else {
-                ImGui::DragFloat(label.c_str(), &f, std::max(std::fabs(f) * 0.01f, 0.001f), lo, hi, "%.4g");
+                ImGui::DragFloat(label.c_str(), &f, std::max(std::fabs(f) * 0.01f, 0.001f), lo, hi, format.c_str());
             }
             if ((changed = edit.track(&f, 1))) nv = is_int ? json(int(std::lround(f))) : json(double(f));
             break;
@@ -119,8 +138,13 @@ void param_widget(const std::string& set_name, const std::string& label, const P
 }  // namespace
 
 void draw_panels(ViewSession& session, Playback& clock, PanelInfo& info, PanelActions& out) {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360, 520), ImGuiCond_FirstUseEver);
+    // Bottom left, clear of the overlay: the time label (top left; its text is at most ~6 % of
+    // the height) and the legend (right of the data, which sits in the middle).
+    const ImVec2 screen = ImGui::GetIO().DisplaySize;
+    const float clear_top = std::round(0.12f * screen.y) + 24.0f;
+    ImGui::SetNextWindowPos(ImVec2(8, std::max(clear_top, screen.y - 8)), ImGuiCond_FirstUseEver, ImVec2(0, 1));
+    ImGui::SetNextWindowSize(ImVec2(360, std::max(120.0f, std::min(520.0f, screen.y - 8 - clear_top))), ImGuiCond_FirstUseEver);
+    update_in_use(session);
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("pathlet view  (Tab hides, ? keys)");
     ImGui::TextUnformatted(info.backend.c_str());
