@@ -92,7 +92,8 @@ TEST(BenchMachine, GraphsWithOutWriteTheResults) {
     EXPECT_EQ(read_json(d / "r" / "results.json")["runs"].size(), 1u);
 }
 
-// An option the chosen mode does nothing with is an error (exit 2) that names it and why.
+// An option the chosen mode does nothing with is an error (exit 2) that names it and why, before
+// any work (render's --fps without --video too).
 TEST(BenchMachine, AnOptionAModeIgnoresIsAnError) {
     const fs::path d = scratch("ignored");
     struct Case {
@@ -104,6 +105,7 @@ TEST(BenchMachine, AnOptionAModeIgnoresIsAnError) {
         {"bench isl --threshold 0.2", "--threshold does nothing without --compare"},
         {"bench isl --no-images", "--no-images does nothing without --out or --experiment"},
         {"bench isl --merge a --out " + (d / "m").string(), "GRAPHS do nothing with --merge"},
+        {"render --phantom small --fps 30 --out " + (d / "r").string(), "--fps does nothing without --video"},
     };
     for (const auto& c : cases) {
         const CliRun r = pathlet_cli(c.args);

@@ -106,6 +106,7 @@ int run(const std::vector<std::string>& argv) {
         .example("pathlet render --data flow.vtp --mesh aorta.glb --time 0:18:0.04 --video flow.mp4",
                  "your own data, 25 fps, as a video");
     if (!a.parse(argv)) return 0;
+    if (video_path.empty()) a.unused_here({"fps"}, "without --video FILE (images have no frame rate)");
 
     opt.graph_path = resolve_graph_path(graph);  // an unknown name: one line, exit 2, before anything else
     if (shard) opt.shard_index = shard->index, opt.shard_count = shard->count;
