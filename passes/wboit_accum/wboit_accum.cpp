@@ -49,10 +49,13 @@ pathlet::PassTypeInfo wboit_accum_type() {
                                "blended into weighted premultiplied colour and revealage, no lists (20 bytes a "
                                "pixel); oit_composite resolves them");
     lines::declare_params(b, {.color = "fade_opacity.frag"})
-        .param_enum("weight", "depth_cubed", {"depth_cubed", "linevis"},
-                    "weight w(d, a), d the view's linear depth over [near, far]: depth_cubed = a max(0.01, 3000 (1 - "
-                    "d)^3) (the paper's eq. 10), linevis = clamp((8a + 0.01)^3 1e8 (1 - 0.95 d)^3, 0.01, 300) "
-                    "(LineVis's)")
+        .param_enum("weight", "exponential", {"exponential", "depth_cubed", "linevis"},
+                    "weight w(d, a), d the view's linear depth over [near, far]: exponential = a max(1e-4, 3000 "
+                    "exp(-falloff d)) (steeper than the published ones: the nearest layers dominate), depth_cubed = "
+                    "a max(0.01, 3000 (1 - d)^3) (the paper's eq. 10), linevis = clamp((8a + 0.01)^3 1e8 (1 - 0.95 "
+                    "d)^3, 0.01, 300) (LineVis's)")
+        .param_float("falloff", 25.0, 0.0, 80.0,
+                     "exponential weight: e-folds of the weight over the depth range [near, far]")
         .output_texture("accum", "rgba32f", "sum of premultiplied colour x weight (rgb) and opacity x weight (a)")
         .output_texture("revealage", "r32f", "product of (1 - opacity) over the pixel's fragments (1: none)")
         .output_texture("coverage", "depth24", "depth < 1 where any fragment landed (the wall and oit_composite skip "

@@ -9,14 +9,16 @@
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_hook)
 
-uniform int u_weight;  // 0 depth_cubed, 1 linevis
+uniform int u_weight;  // the choice's index: 0 exponential, 1 depth_cubed, 2 linevis
+uniform float u_falloff;  // exponential: the weight's e-folds over [near, far]
 
 layout(location = 0) out vec4 o_accum;
 layout(location = 1) out vec4 o_revealage;
 
-// The published weights (float32 sums hold them: no range to save).
+// The published weights (float32 sums hold them: no range to save), and a steeper one.
 float wboit_weight(float a, float d) {
-    if (u_weight == 1) {
+    if (u_weight == 0) return a * max(1e-4, 3e3 * exp(-u_falloff * d));
+    if (u_weight == 2) {
         float s = min(1.0, a) * 8.0 + 0.01, t = 1.0 - 0.95 * d;
         return clamp(s * s * s * 1e8 * t * t * t, 1e-2, 3e2);
     }
