@@ -268,11 +268,6 @@ void Drawer::draw(PassContext& ctx, const ShaderProgram& prog) {
     ctx.stat("line_width", double(width_));  // world units, before the width hook (tests turn it into pixels)
 }
 namespace {
-GLuint bound_framebuffer() {
-    GLint fbo = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    return GLuint(fbo);
-}
 // Clear values go through the masks: open them all first.
 void open_masks() {
     glDisable(GL_SCISSOR_TEST);
@@ -283,17 +278,17 @@ void open_masks() {
 
 void clear_color(int index, glm::vec4 value) {
     open_masks();
-    glClearNamedFramebufferfv(bound_framebuffer(), GL_COLOR, index, &value.x);
+    glClearBufferfv(GL_COLOR, index, &value.x);  // the bound draw framebuffer's, not asked for
 }
 
 void clear_color_int(int index, glm::ivec4 value) {
     open_masks();
-    glClearNamedFramebufferiv(bound_framebuffer(), GL_COLOR, index, &value.x);
+    glClearBufferiv(GL_COLOR, index, &value.x);
 }
 
 void clear_depth(float value) {
     open_masks();
-    glClearNamedFramebufferfv(bound_framebuffer(), GL_DEPTH, 0, &value);
+    glClearBufferfv(GL_DEPTH, 0, &value);
 }
 
 }  // namespace pathlet::lines
