@@ -12,6 +12,8 @@ export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe MESA_SHADER_CACHE_DISABLE
 for t in build/bin/test_*; do
   "$t" --gtest_filter="$FILTER" --gtest_brief=1 >/dev/null 2>&1 || true
 done
+# gpu_check.quick's renders of every shipped graph (tests/gpu_check/goldens), with everything.
+[ "$FILTER" = "*" ] && XDG_CONFIG_HOME=$PWD/build/test-config tests/gpu_check/test_gpu_check.sh "$PWD" build/bin/pathlet >/dev/null
 changed=$(git status --porcelain -- '*/goldens/*' | awk '{print $2}')
 if [ -z "$changed" ]; then
   echo "update-goldens: no golden changed"
