@@ -32,7 +32,7 @@ grep -Eq '^PATHLET_BUILD build: (full|lean)' "$R/info-gl.txt" || fail "info-gl.t
 graphs=$(ls "$SRC"/graphs/*.json | wc -l)
 [ "$(ls "$R"/renders/*.png | wc -l)" -eq "$graphs" ] || fail "not one render per shipped graph ($graphs)"
 [ "$(grep -c ' ok$' "$R/compare.txt")" -eq "$graphs" ] ||
-  fail "renders differ from the goldens (a new graph: PATHLET_UPDATE_GOLDENS=1 $0 ...): $(cat "$R/compare.txt")"
+  fail "renders differ from the goldens (a deliberate change or a new graph: scripts/update-goldens.sh): $(cat "$R/compare.txt")"
 grep -q 'wall fps' "$R/bench_window.txt" || fail "the bench summary has no wall fps column"
 grep -q 'variant4_opacity' "$R/bench_window.txt" || fail "variant 4 is not benched"
 grep -q 'variant1_lineao \[cull=false\]' "$R/bench_all.txt" || fail "every line: no unculled variant 1 beside the culled one"
