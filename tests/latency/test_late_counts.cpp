@@ -133,9 +133,10 @@ struct Command {
     std::vector<std::string> err;  // stderr lines
 };
 
-Command run_cli(const std::string& args, const fs::path& dir) {
+Command run_cli(const std::string& args, const fs::path& dir, const std::string& env = "") {
     const fs::path err = dir / "stderr.txt";
-    const std::string cmd = "'" + std::string(PATHLET_CLI) + "' " + args + " > /dev/null 2> '" + err.string() + "'";
+    const std::string cmd = (env.empty() ? "" : "env '" + env + "' ") + "'" + std::string(PATHLET_CLI) + "' " + args +
+                            " > /dev/null 2> '" + err.string() + "'";
     Command c;
     const int s = std::system(cmd.c_str());
     c.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
@@ -193,6 +194,23 @@ TEST(Latency, RenderEndsWithOneIncompleteFramesLineNamedAsTheFilesAndExitsZero) 
                             dir);
     ASSERT_EQ(whole.status, 0) << joined(whole.err);
     for (const auto& l : whole.err) EXPECT_EQ(l.find("incomplete frames"), std::string::npos) << l;
+}
+
+TEST(Latency, ABadLatencyOrFramesInFlightIsAUsageErrorNamingTheVariable) {
+    const fs::path dir = fs::path(test_scratch_dir("pathlet_latency")) / "bad_env";
+    fs::create_directories(dir);
+    const std::string render = "render isl --data '" + phantom_file().string() + "' --size 96x72 --time 1 --quiet --out '" +
+                               (dir / "out").string() + "'";
+    for (const auto& [var, value] : {std::pair<std::string, std::string>{"PATHLET_SIMULATE_GPU_LATENCY", "-2"},
+                                     {"PATHLET_SIMULATE_GPU_LATENCY", "3x"},
+                                     {"PATHLET_FRAMES_IN_FLIGHT", "0"},
+                                     {"PATHLET_FRAMES_IN_FLIGHT", "many"}}) {
+        const Command c = run_cli(render, dir, var + "=" + value);
+        EXPECT_EQ(c.status, 2) << var << "=" << value << "\n" << joined(c.err);
+        ASSERT_FALSE(c.err.empty());
+        EXPECT_NE(c.err.back().find(var + "='" + value + "'"), std::string::npos) << c.err.back();
+        EXPECT_FALSE(fs::exists(dir / "out")) << "nothing written";
+    }
 }
 
 }  // namespace

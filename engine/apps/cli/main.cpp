@@ -2,8 +2,10 @@
 #include "args.hpp"
 #include "build_info.hpp"
 #include "commands.hpp"
+#include "frames/frames_in_flight.hpp"
 #include "graph/graph_model.hpp"
 #include "util/text.hpp"
+#include <pathlet/gpu_fence.hpp>
 #include <pathlet/text.hpp>
 
 #include <algorithm>
@@ -46,6 +48,13 @@ int main(int argc, char** argv) {
     if (args[0] == "--version") {
         std::printf("pathlet %s\n%s\n", PATHLET_VERSION, pathlet::build_description().c_str());
         return 0;
+    }
+    try {  // the environment's GPU settings, before anything runs: a typo is a usage error, never ignored
+        pathlet::simulated_gpu_latency();
+        pathlet::FramesInFlight::from_env();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
     }
     for (const auto& c : commands()) {
         if (c.name != args[0]) continue;
