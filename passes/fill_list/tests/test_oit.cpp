@@ -293,6 +293,9 @@ TEST(Oit, ALaterOverflowIsFoundWithoutWaitingAndTheNextFramesAreWhole) {
     // The stats are means over the frames: the running total passed 1, and the loss was counted.
     EXPECT_GT(stats["overflow_events_total"], 1.0) << "the first frame's overflow and at least one found later";
     EXPECT_GT(stats["dropped_fragments"], 0.0) << "a frame that lost fragments says so";
+    ASSERT_FALSE(res.incomplete_frames.empty()) << "and the run lists it (incomplete frames: N of M)";
+    EXPECT_EQ(res.incomplete_frames.front(), 3u) << "the first frame at 3.2 s is the first to outgrow the buffer";
+    EXPECT_LT(res.incomplete_frames.back(), res.frames - 1) << "the last frame is whole";
     Frame ample = render("oit_only.json", {"fill_list.nodes_per_pixel=64"}, {"color"}, 6.2);
     EXPECT_EQ(last.pixels, ample["color"].pixels) << "the last frames have room again";
 }
