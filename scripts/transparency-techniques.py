@@ -139,7 +139,7 @@ def plot(rows, reference, path_stem):
         ax.set_ylabel(f"SSIM against {reference}")
         data, size, sweep = key
         ax.set_title(f"{os.path.basename(data)} {size}" + (f", {sweep}" if sweep else ""), fontsize=9)
-        ax.set_xlim(0.9, max(x for x, _ in pts) * 1.45)
+        ax.set_xlim(min(x for x, _ in pts) * 0.85, max(x for x, _ in pts) * 1.45)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8, loc="lower left")
     fig.tight_layout()
