@@ -356,7 +356,13 @@ void ViewLoop::input() {
         else if (!e.button.empty()) in_.pan_dx += e.dx, in_.pan_dy += e.dy;
         in_.scroll += e.scroll;
         if (!e.set.empty()) act_.sets.emplace_back(e.set.substr(0, e.set.find('=')), e.set.substr(e.set.find('=') + 1));
-        if (!e.graph.empty()) act_.switch_to = resolve_graph_path(e.graph);
+        if (!e.graph.empty()) {
+            try {
+                act_.switch_to = resolve_graph_path(e.graph);
+            } catch (const GraphNotFound&) {  // the session says it cannot switch and keeps the graph shown
+                act_.switch_to = e.graph;
+            }
+        }
         act_.reload |= e.reload;
     }
     for (; !in_.keys.empty(); in_.keys.pop_front()) apply_key(in_.keys.front());

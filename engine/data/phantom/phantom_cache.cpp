@@ -3,6 +3,7 @@
 
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
+#include "util/cache_dir.hpp"
 
 #include <cstdlib>
 #include <filesystem>
@@ -14,10 +15,7 @@ static constexpr const char* kPhantomVersion = "v2";  // v2: no points of one fl
 
 std::string phantom_cache_path(const std::string& preset) {
     phantom_preset(preset);  // validates the name
-    std::filesystem::path dir;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) dir = std::filesystem::path(xdg) / "pathlet";
-    else if (const char* home = std::getenv("HOME"); home && *home) dir = std::filesystem::path(home) / ".cache" / "pathlet";
-    else dir = std::filesystem::temp_directory_path() / "pathlet-cache";
+    const std::filesystem::path dir = cache_dir();
     return (dir / ("phantom-" + preset + "-" + kPhantomVersion + ".pathlet")).string();
 }
 
