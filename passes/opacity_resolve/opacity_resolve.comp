@@ -6,6 +6,10 @@
 // segment keeps the least opacity any of its fragments asked for (an atomic minimum of the
 // float bits, which order like the floats for opacities >= 0); the first fragment of a segment
 // also puts the segment on the list opacity_blend works through.
+//
+// adapt = depth_complexity: a first dispatch (OO_MEASURE) sums the lists' fragments and covered
+// pixels into `density`; the resolve scales q and r by (D / depth_reference)^adapt_exponent,
+// D the frame's mean depth complexity (fragments per covered pixel), read on the GPU.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "opacity_optimization.glsl"
@@ -13,16 +17,69 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = LISTS_BINDING) readonly buffer OoLists { uint oo_list[]; };
 layout(std430, binding = SEGMENTS_BINDING) readonly buffer OoSegments { uint oo_seg[]; };
 layout(std430, binding = TARGETS_BINDING) coherent buffer OoTargets { uint oo_target[]; };
+layout(std430, binding = DENSITY_BINDING) coherent buffer OoDensity { uint oo_density[]; };
+
+// The density's words: covered pixels and fragments (64 bits each: low, high), the scale used.
+#define OO_DENSITY_PIXELS 0
+#define OO_DENSITY_FRAGMENTS 2
+#define OO_DENSITY_SCALE 4
+
+#ifdef OO_MEASURE
+// 64-bit sums from 32-bit atomics: the carry goes to the high word.
+void add64(int at, uint v) {
+    uint old = atomicAdd(oo_density[at], v);
+    if (old > 0xFFFFFFFFu - v) atomicAdd(oo_density[at + 1], 1u);
+}
+shared uint s_pixels, s_fragments;  // the work group's share, one atomic each to the buffer
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) s_pixels = 0u, s_fragments = 0u;
+    barrier();
+    uvec2 p = gl_GlobalInvocationID.xy;
+    uint w = oo_list[OO_LIST_WIDTH];
+    if (p.x < w && p.y < oo_list[OO_LIST_HEIGHT]) {
+        uint nodes = oo_nodes_at(oo_list), len = 0u;
+        for (uint i = oo_list[OO_LIST_HEADS + p.y * w + p.x]; i != OO_END && len < 0x1000000u; ++len)
+            i = oo_list[nodes + 4u * i + 3u];
+        if (len > 0u) {
+            atomicAdd(s_pixels, 1u);
+            atomicAdd(s_fragments, len);
+        }
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && s_pixels > 0u) {
+        add64(OO_DENSITY_PIXELS, s_pixels);
+        add64(OO_DENSITY_FRAGMENTS, s_fragments);
+    }
+}
+#else
 
 uniform float u_q;       // occlusion: important fragments behind must show
 uniform float u_r;       // clutter: important fragments in front must not be cluttered
 uniform float u_lambda;  // importance shields itself: (1 - g)^(2 lambda)
+uniform int u_adapt;     // 0: depth_complexity, 1: fixed (the enum's order)
+uniform float u_depth_reference, u_adapt_exponent, u_adapt_min, u_adapt_max;
+
+float sum64(int at) { return float(oo_density[at]) + 4294967296.0 * float(oo_density[at + 1]); }
+
+// The factor of q and r: 1 (fixed), or (D / depth_reference)^adapt_exponent within
+// [adapt_min, adapt_max] for the frame's mean depth complexity D (no fragments: 1).
+float clearing_scale() {
+    if (u_adapt != 0) return 1.0;
+    float pixels = sum64(OO_DENSITY_PIXELS);
+    if (pixels <= 0.0) return 1.0;
+    float depth = sum64(OO_DENSITY_FRAGMENTS) / pixels;
+    return clamp(pow(depth / u_depth_reference, u_adapt_exponent), u_adapt_min, u_adapt_max);
+}
 
 #define K MAX_FRAGMENTS  // the nearest fragments that get an opacity (compiled in)
 
 bool nearer(float d, uint s, float d2, uint s2) { return d < d2 || (d == d2 && s < s2); }
 
 void main() {
+    float scale = clearing_scale();
+    if (gl_GlobalInvocationID.xy == uvec2(0u)) oo_density[OO_DENSITY_SCALE] = floatBitsToUint(scale);  // reported
+    float q = u_q * scale, r = u_r * scale;
     uvec2 p = gl_GlobalInvocationID.xy;
     uint w = oo_list[OO_LIST_WIDTH];
     if (p.x >= w || p.y >= oo_list[OO_LIST_HEIGHT]) return;
@@ -63,7 +120,7 @@ void main() {
     for (int k = 0; k < n; ++k) {
         float g = imp[k], g2 = g * g;
         float B = max(G - F - g2, 0.0);
-        float alpha = 1.0 / (1.0 + pow(1.0 - g, 2.0 * u_lambda) * (u_r * F + u_q * B));
+        float alpha = 1.0 / (1.0 + pow(1.0 - g, 2.0 * u_lambda) * (r * F + q * B));
         F += g2;
         uint old = atomicMin(oo_target[OO_TARGET_ALPHA + seg[k]], floatBitsToUint(alpha));
         if (old == OO_UNSEEN) {  // the segment's first fragment this frame: on the work list
@@ -73,3 +130,4 @@ void main() {
         }
     }
 }
+#endif

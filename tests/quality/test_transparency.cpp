@@ -50,7 +50,7 @@ const std::vector<std::string> kCurtain = {"window=-1", "tail_fade=0", "head_fad
 std::vector<std::string> v4(double q) {
     std::vector<std::string> s = kCurtain;
     for (const char* x : {"opacity_lists.importance_min=0", "opacity_lists.importance_max=100", "importance_exponent=1",
-                          "r=0", "lambda=1"})
+                          "r=0", "lambda=1", "adapt=fixed"})
         s.push_back(x);
     s.push_back("q=" + std::to_string(q));
     return s;

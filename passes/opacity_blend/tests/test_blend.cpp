@@ -38,7 +38,7 @@ Camera camera() { return camera_down_z(curtain(), {12, 2.75f, 0}, 45.0f, 30.0f, 
 const std::vector<std::string> kSets = {"window=-1", "tail_fade=0", "head_fade=0", "line_width=0.6",
                                         "opacity_lists.importance_min=0", "opacity_lists.importance_max=100",
                                         "importance_exponent=1", "segment_length=2", "q=0", "r=0", "half_life=0.2",
-                                        "smoothing=6"};
+                                        "smoothing=6", "adapt=fixed"};  // q and r as set (the blend's tests)
 const std::vector<std::string> kKeep = {"oo_segments", "oo_targets", "oo_opacity"};
 
 // The smoothing opacity_blend.comp does, on the CPU, from the targets.

@@ -1,6 +1,8 @@
 // opacity_resolve on real GL: a stack of four overlapping straight lines (one segment each) of
 // known importance; every segment's opacity must be the closed form computed on the CPU from
 // the very fragments of opacity_lists' lists (1e-3), and the closed form of the whole stack.
+// adapt = depth_complexity: q and r scale with the lists' mean fragments per covered pixel,
+// counted on the CPU from the same lists; a stack twice as deep clears twice as strongly.
 #include "frame_runner.hpp"
 #include "opacity_layout.hpp"
 #include "straight_lines.hpp"
@@ -22,23 +24,27 @@ const double kQ = 2.0, kR = 1.0, kLambda = 1.5;
 const float kSpeed[4] = {20, 40, 60, 90};  // importance 0.2, 0.4, 0.6, 0.9 on [0, 100]
 
 // Front (z = 0) to back (z = -3), all over the same pixels, along x.
+// `layers` lines, the k-th at z = -k with the importance kSpeed[k % 4] / 100.
+Scene stack_of(int layers) {
+    std::vector<StraightLine> l;
+    for (int k = 0; k < layers; ++k) l.push_back({{0, 2, -float(k)}, {10, 2, -float(k)}, kSpeed[k % 4], 41, {}});
+    return straight_lines_scene(l);
+}
 const Scene& stack() {
-    static const Scene s = [] {
-        std::vector<StraightLine> l;
-        for (int k = 0; k < 4; ++k) l.push_back({{0, 2, -float(k)}, {10, 2, -float(k)}, kSpeed[k], 41});
-        return straight_lines_scene(l);
-    }();
+    static const Scene s = stack_of(4);
     return s;
 }
 
-std::vector<std::string> sets(int max_fragments) {
+std::vector<std::string> sets(int max_fragments, const std::string& adapt = "fixed") {
     return {"window=-1", "line_width=0.8", "opacity_lists.importance_min=0", "opacity_lists.importance_max=100",
             "importance_exponent=1", "segment_length=1000", "q=" + std::to_string(kQ), "r=" + std::to_string(kR),
-            "lambda=" + std::to_string(kLambda), "opacity_resolve.max_fragments=" + std::to_string(max_fragments)};
+            "lambda=" + std::to_string(kLambda), "opacity_resolve.max_fragments=" + std::to_string(max_fragments),
+            "adapt=" + adapt};
 }
 
-double closed_form(double g, double front, double behind) {
-    return 1.0 / (1.0 + std::pow(1.0 - g, 2.0 * kLambda) * (kR * front + kQ * behind));
+// `scale`: the factor of q and r (adapt).
+double closed_form(double g, double front, double behind, double scale = 1.0) {
+    return 1.0 / (1.0 + std::pow(1.0 - g, 2.0 * kLambda) * scale * (kR * front + kQ * behind));
 }
 
 struct Node {
@@ -48,7 +54,8 @@ struct Node {
 
 // The least closed-form opacity per segment over the lists, as opacity_resolve.comp defines it;
 // `beyond`: fragments past the `keep` nearest.
-std::map<uint32_t, double> cpu_targets(const std::vector<uint32_t>& lists, int keep, size_t& beyond, size_t& layered) {
+std::map<uint32_t, double> cpu_targets(const std::vector<uint32_t>& lists, int keep, size_t& beyond, size_t& layered,
+                                       double scale = 1.0) {
     const uint32_t w = lists.at(3), h = lists.at(4);
     const uint32_t nodes_at = (8 + w * h + 3) & ~3u;
     std::map<uint32_t, double> least;
@@ -66,7 +73,7 @@ std::map<uint32_t, double> cpu_targets(const std::vector<uint32_t>& lists, int k
         if (frags.size() > size_t(keep)) beyond += frags.size() - size_t(keep);
         for (size_t k = 0; k < frags.size() && k < size_t(keep); ++k) {
             const double g = frags[k].importance, g2 = g * g;
-            const double a = closed_form(g, front, std::max(all - front - g2, 0.0));
+            const double a = closed_form(g, front, std::max(all - front - g2, 0.0), scale);
             front += g2;
             auto it = least.find(frags[k].segment);
             if (it == least.end() || a < it->second) least[frags[k].segment] = a;
@@ -75,7 +82,95 @@ std::map<uint32_t, double> cpu_targets(const std::vector<uint32_t>& lists, int k
     return least;
 }
 
+// The lists' depth complexity counted on the CPU: covered pixels and their fragments.
+struct Depth {
+    uint64_t pixels = 0, fragments = 0;
+    double mean() const { return pixels ? double(fragments) / double(pixels) : 0.0; }
+};
+Depth cpu_depth(const std::vector<uint32_t>& lists) {
+    const uint32_t w = lists.at(3), h = lists.at(4);
+    const uint32_t nodes_at = (8 + w * h + 3) & ~3u;
+    Depth d;
+    for (uint32_t p = 0; p < w * h; ++p) {
+        uint64_t n = 0;
+        for (uint32_t i = lists.at(8 + p); i != 0xFFFFFFFFu; i = lists.at(nodes_at + 4 * i + 3)) ++n;
+        d.pixels += n > 0;
+        d.fragments += n;
+    }
+    return d;
+}
+
+// opacity_resolve's density words (opacity_resolve.comp): pixels, fragments (64 bits), scale.
+struct Density {
+    uint64_t pixels = 0, fragments = 0;
+    float scale = 0.0f;
+};
+Density gpu_density(const FrameRunner& run) {
+    const std::vector<uint32_t> w = run.words("opacity_resolve.density");
+    return {w.at(0) | uint64_t(w.at(1)) << 32, w.at(2) | uint64_t(w.at(3)) << 32, as_float(w.at(4))};
+}
+
+struct Adapted {
+    Depth cpu;
+    Density gpu;
+};
+// One frame of a `layers`-deep stack with adapt = depth_complexity; every segment's opacity must
+// be the closed form with q and r times the scale the CPU expects from the lists' depth.
+Adapted adapted_stack(int layers, const std::vector<std::string>& extra, double expected_scale_per_depth) {
+    const Scene scene = stack_of(layers);
+    std::vector<std::string> s = sets(64, "depth_complexity");
+    s.insert(s.end(), extra.begin(), extra.end());
+    FrameRunner run(kGraph, s, scene, kSize, camera_down_z(scene, {5, 2, 0}, 30, 30, kSize),
+                    {"oo_lists", "oo_segments", "oo_targets"});
+    run.frame(0.0);
+    const std::vector<uint32_t> lists = run.words("oo_lists"), targets = run.words("oo_targets");
+    Adapted a{cpu_depth(lists), gpu_density(run)};
+    size_t beyond = 0, layered = 0;
+    const double scale = expected_scale_per_depth > 0 ? expected_scale_per_depth * a.cpu.mean() : double(a.gpu.scale);
+    const std::map<uint32_t, double> cpu = cpu_targets(lists, 64, beyond, layered, scale);
+    EXPECT_EQ(cpu.size(), size_t(layers));
+    for (const auto& [segment, alpha] : cpu) {
+        EXPECT_NE(target_bits(targets, segment), kUnseen) << "segment " << segment;
+        EXPECT_NEAR(as_float(target_bits(targets, segment)), alpha, 1e-3) << layers << " layers, segment " << segment;
+    }
+    return a;
+}
+
 }  // namespace
+
+// q and r times D / depth_reference, D = fragments per covered pixel, counted on the GPU over
+// the very lists the CPU counts; a denser input (eight layers for four) clears more strongly.
+TEST(OpacityResolve, AdaptScalesQAndRWithTheDepthComplexityOfTheLists) {
+    const double reference = 2.0;
+    const std::vector<std::string> extra = {"depth_reference=" + std::to_string(reference),
+                                            "opacity_resolve.adapt_min=0", "opacity_resolve.adapt_max=1000"};
+    const Adapted sparse = adapted_stack(4, extra, 1.0 / reference), dense = adapted_stack(8, extra, 1.0 / reference);
+    for (const Adapted* a : {&sparse, &dense}) {
+        EXPECT_EQ(a->gpu.pixels, a->cpu.pixels) << "covered pixels";
+        EXPECT_EQ(a->gpu.fragments, a->cpu.fragments) << "fragments";
+        EXPECT_NEAR(a->gpu.scale, a->cpu.mean() / reference, 1e-5 * a->gpu.scale);
+    }
+    EXPECT_GT(sparse.cpu.mean(), 3.0) << "most covered pixels see the whole stack";
+    EXPECT_GT(dense.cpu.mean(), 1.8 * sparse.cpu.mean()) << "twice the layers over the same pixels";
+    EXPECT_NEAR(dense.gpu.scale / sparse.gpu.scale, dense.cpu.mean() / sparse.cpu.mean(), 1e-4);
+}
+
+// The scale stays within [adapt_min, adapt_max] (the graph's default: at least a quarter of q
+// and r), and adapt = fixed uses q and r as given, measuring nothing.
+TEST(OpacityResolve, AdaptClampsItsScaleAndFixedUsesQAndRAsGiven) {
+    const Adapted high = adapted_stack(4, {"depth_reference=0.01", "opacity_resolve.adapt_max=3"}, 0.0);
+    EXPECT_FLOAT_EQ(high.gpu.scale, 3.0f);
+    const Adapted low = adapted_stack(4, {"depth_reference=10000"}, 0.0);
+    EXPECT_FLOAT_EQ(low.gpu.scale, 0.25f) << "the default adapt_min";
+    EXPECT_GT(low.cpu.mean(), 3.0);
+
+    FrameRunner run(kGraph, sets(32), stack(), kSize, camera_down_z(stack(), {5, 2, 0}, 30, 30, kSize),
+                    {"oo_lists", "oo_segments", "oo_targets"});
+    run.frame(0.0);
+    const Density fixed = gpu_density(run);
+    EXPECT_FLOAT_EQ(fixed.scale, 1.0f);
+    EXPECT_EQ(fixed.pixels, 0u) << "adapt = fixed: no measuring dispatch";
+}
 
 TEST(OpacityResolve, ClosedFormPerSegmentEqualsTheCpuOverTheSameFragments) {
     FrameRunner run(kGraph, sets(32), stack(), kSize, camera_down_z(stack(), {5, 2, 0}, 30, 30, kSize),
