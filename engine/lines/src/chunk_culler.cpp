@@ -66,7 +66,8 @@ const std::vector<std::string>& ChunkCuller::defines() {
             def("CULL_H_CHUNKS", offsetof(Header, chunks) / 4),
             def("CULL_H_OUTSIDE", offsetof(Header, outside) / 4),
             def("CULL_H_DRAWN", offsetof(Header, drawn) / 4),
-            def("CULL_H_OCCLUDED", offsetof(Header, occluded) / 4)};
+            def("CULL_H_OCCLUDED", offsetof(Header, occluded) / 4),
+            def("CULL_H_SCRATCH", sizeof(Header) / 4)};
         for (std::string& x : CullScan::defines()) v.push_back(std::move(x));
         return v;
     }();

@@ -10,15 +10,14 @@ namespace {
 constexpr uint32_t kTop = 0xffffffffu;  // line_cull_scan.comp's kTop: no level above
 constexpr uint32_t kMaxGroups = 65535;  // GL 4.5's minimum GL_MAX_COMPUTE_WORK_GROUP_COUNT
 
-uint32_t blocks(uint32_t n) { return (n + CullScan::kBlock - 1) / CullScan::kBlock; }
-
 // Values per level: the chunks, then each level's block count, until one block holds them.
-std::vector<uint32_t> levels(size_t chunks) {
-    if (chunks > size_t(kMaxGroups) * CullScan::kBlock)
+std::vector<uint32_t> levels(size_t chunks, uint32_t per_thread) {
+    const size_t block = size_t(CullScan::kThreads) * per_thread;
+    if (chunks > size_t(kMaxGroups) * block)
         throw std::length_error("line kit culling: " + std::to_string(chunks) + " chunks; the scan takes at most " +
-                                std::to_string(size_t(kMaxGroups) * CullScan::kBlock));
+                                std::to_string(size_t(kMaxGroups) * block));
     std::vector<uint32_t> n{uint32_t(chunks)};
-    while (n.back() > CullScan::kBlock) n.push_back(blocks(n.back()));
+    while (n.back() > block) n.push_back(uint32_t((n.back() + block - 1) / block));
     return n;
 }
 
@@ -26,20 +25,19 @@ void set_uint(const ShaderProgram& p, const char* name, uint32_t v) { glProgramU
 
 }  // namespace
 
-size_t CullScan::scratch_words(size_t chunks) {
-    const std::vector<uint32_t> n = levels(chunks);
+size_t CullScan::scratch_words(size_t chunks, uint32_t per_thread) {
+    const std::vector<uint32_t> n = levels(chunks, per_thread);
     size_t words = 0;
     for (size_t k = 1; k < n.size(); ++k) words += n[k];
     return std::max<size_t>(words, 1);
 }
 
-std::vector<std::string> CullScan::defines() {
-    return {"CULL_SCAN_THREADS " + std::to_string(kThreads), "CULL_SCAN_PER_THREAD " + std::to_string(kPerThread),
-            "CULL_SCAN_BLOCK " + std::to_string(kBlock), "CULL_H_SCRATCH " + std::to_string(sizeof(CullHeader) / 4)};
+std::vector<std::string> CullScan::defines(uint32_t per_thread) {
+    return {"CULL_SCAN_THREADS " + std::to_string(kThreads), "CULL_SCAN_PER_THREAD " + std::to_string(per_thread)};
 }
 
-void CullScan::run(const ShaderProgram& scan, GLuint header, uint32_t chunks, int phase) {
-    const std::vector<uint32_t> n = levels(chunks);
+void CullScan::run(const ShaderProgram& scan, GLuint header, uint32_t chunks, int phase, uint32_t per_thread) {
+    const std::vector<uint32_t> n = levels(chunks, per_thread);
     std::vector<uint32_t> at(n.size(), 0);  // level k > 0: where its values start in the scratch
     for (size_t k = 2; k < n.size(); ++k) at[k] = at[k - 1] + n[k - 1];
     if (phase == 1) {  // the counts add up from zero; phase 2 draws nothing until it runs

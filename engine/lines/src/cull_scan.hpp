@@ -33,16 +33,20 @@ public:
     static constexpr uint32_t kThreads = 256, kPerThread = 4, kBlock = kThreads * kPerThread;
 
     // Uints of scratch after the CullHeader for `chunks` chunks (the levels' block sums).
-    static size_t scratch_words(size_t chunks);
+    static size_t scratch_words(size_t chunks, uint32_t per_thread = kPerThread);
     // Bytes of the header buffer for `chunks` chunks.
-    static size_t header_bytes(size_t chunks) { return sizeof(CullHeader) + 4 * scratch_words(chunks); }
-    // The defines line_cull_scan.comp needs besides the kit's binding points.
-    static std::vector<std::string> defines();
+    static size_t header_bytes(size_t chunks, uint32_t per_thread = kPerThread) {
+        return sizeof(CullHeader) + 4 * scratch_words(chunks, per_thread);
+    }
+    // The CULL_SCAN_* defines of line_cull_scan.comp (ChunkCuller::defines() has the default's;
+    // a test compiles a smaller block to reach more levels).
+    static std::vector<std::string> defines(uint32_t per_thread = kPerThread);
 
-    // Records the levels' dispatches for `phase` (1 or 2) with `scan` (line_cull_scan.comp),
-    // the chunk states and the header bound at their points; phase 1 first clears the counts
-    // and phase 2's command. Ends with a storage barrier. Never waits.
-    static void run(const ShaderProgram& scan, GLuint header, uint32_t chunks, int phase);
+    // Records the levels' dispatches for `phase` (1 or 2) with `scan` (line_cull_scan.comp
+    // compiled with defines(per_thread)), the chunk states and the header bound at their
+    // points; phase 1 first clears the counts and phase 2's command. Ends with a storage
+    // barrier. Never waits.
+    static void run(const ShaderProgram& scan, GLuint header, uint32_t chunks, int phase, uint32_t per_thread = kPerThread);
 };
 
 }  // namespace pathlet::lines

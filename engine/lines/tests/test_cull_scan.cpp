@@ -1,7 +1,7 @@
 // The culling's prefix sum (engine/lines/src/cull_scan.hpp, line_cull_scan.comp) against the
-// CPU's at sizes around its blocks: one chunk, one invocation's worth short of a block, a
-// block and one past it, 64 blocks and one past, a million chunks (1024 blocks: two levels)
-// and one block more (three levels).
+// CPU's at sizes around its invocations and blocks: 1, 255, 256, 257, a block and one past it,
+// 65,537 and a million chunks, as the culler compiles it (4 chunks an invocation: two levels
+// at a million) and with one chunk an invocation (blocks of 256: three levels).
 // Each chunk gets random flags and a segment count; the scan's offsets (drawn chunks only),
 // draw commands and counts must be the CPU's exactly, in both phases.
 #include "../src/chunk_culler.hpp"
@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <map>
 #include <random>
 
 using namespace pathlet;
@@ -41,11 +42,25 @@ std::vector<T> read_buffer(GLuint b, size_t n) {
     return out;
 }
 
-void expect_scan_matches_cpu(size_t n) {
-    SCOPED_TRACE(std::to_string(n) + " chunks");
+// The scan as the culler compiles it, or with `per_thread` chunks an invocation (a smaller
+// block reaches three levels at a million chunks).
+const ShaderProgram& scan_program(uint32_t per_thread) {
+    static std::map<uint32_t, ShaderProgram>& programs = *new std::map<uint32_t, ShaderProgram>;  // kept to exit
+    auto it = programs.find(per_thread);
+    if (it != programs.end()) return it->second;
+    std::vector<std::string> defines;
+    for (const std::string& d : ChunkCuller::defines())
+        if (d.rfind("CULL_SCAN_", 0) != 0) defines.push_back(d);
+    for (const std::string& d : CullScan::defines(per_thread)) defines.push_back(d);
+    return programs.emplace(per_thread, ShaderProgram::from_files({"line_cull_scan.comp"},
+                                                                  {std::string(PATHLET_SOURCE_DIR) + "/engine/lines/shaders"}, defines))
+        .first->second;
+}
+
+void expect_scan_matches_cpu(size_t n, uint32_t per_thread = CullScan::kPerThread) {
+    SCOPED_TRACE(std::to_string(n) + " chunks, " + std::to_string(per_thread) + " an invocation");
     test_runtime();  // the GL context
-    static const ShaderProgram& scan = *new ShaderProgram(ShaderProgram::from_files(  // outlives nothing: kept to exit
-        {"line_cull_scan.comp"}, {std::string(PATHLET_SOURCE_DIR) + "/engine/lines/shaders"}, ChunkCuller::defines()));
+    const ShaderProgram& scan = scan_program(per_thread);
     std::mt19937 rng{uint32_t(n)};
     std::vector<State> states(n);
     for (State& s : states) {
@@ -59,13 +74,13 @@ void expect_scan_matches_cpu(size_t n) {
     GLuint state = 0, header = 0;
     glCreateBuffers(1, &state);
     glNamedBufferStorage(state, GLsizeiptr(std::max<size_t>(n, 1) * sizeof(State)), states.data(), GL_DYNAMIC_STORAGE_BIT);
-    const std::vector<uint32_t> junk(CullScan::header_bytes(n) / 4, 0x5a5a5a5a);  // the scan clears what it counts
+    const std::vector<uint32_t> junk(CullScan::header_bytes(n, per_thread) / 4, 0x5a5a5a5a);  // the scan clears what it counts
     glCreateBuffers(1, &header);
     glNamedBufferStorage(header, GLsizeiptr(junk.size() * 4), junk.data(), 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, define_value("CULL_STATE_BINDING"), state);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, define_value("CULL_HEADER_BINDING"), header);
-    CullScan::run(scan, header, uint32_t(n), 1);
-    CullScan::run(scan, header, uint32_t(n), 2);
+    CullScan::run(scan, header, uint32_t(n), 1, per_thread);
+    CullScan::run(scan, header, uint32_t(n), 2, per_thread);
     const std::vector<State> got = read_buffer<State>(state, n);
     const std::vector<uint32_t> h = read_buffer<uint32_t>(header, sizeof(CullHeader) / 4);
     CullHeader gh;
@@ -105,20 +120,29 @@ void expect_scan_matches_cpu(size_t n) {
     glDeleteBuffers(1, &header);
 }
 
-TEST(CullScan, OneChunk) { expect_scan_matches_cpu(1); }
-TEST(CullScan, WithinOneBlock) {
-    expect_scan_matches_cpu(255);
-    expect_scan_matches_cpu(256);
-    expect_scan_matches_cpu(257);
+TEST(CullScan, OneChunk) {
+    expect_scan_matches_cpu(1);
+    expect_scan_matches_cpu(1, 1);
+}
+TEST(CullScan, AroundTheInvocations) {
+    for (uint32_t per : {CullScan::kPerThread, 1u}) {
+        expect_scan_matches_cpu(255, per);
+        expect_scan_matches_cpu(256, per);  // per = 1: one block exactly
+        expect_scan_matches_cpu(257, per);  // per = 1: two blocks
+    }
 }
 TEST(CullScan, AroundTheBlockSize) {
     expect_scan_matches_cpu(CullScan::kBlock);
     expect_scan_matches_cpu(CullScan::kBlock + 1);
 }
-TEST(CullScan, TwoLevels) { expect_scan_matches_cpu(65537); }
-TEST(CullScan, AMillionChunksAndThreeLevels) {
-    expect_scan_matches_cpu(1048576);         // 1024 blocks: their sums are one block
-    expect_scan_matches_cpu(1048576 + 1025);  // 1026 blocks: their sums are two, a third level
+TEST(CullScan, TwoLevels) {
+    expect_scan_matches_cpu(65537);     // 65 blocks of 1024
+    expect_scan_matches_cpu(65537, 1);  // 257 blocks of 256: their sums are two blocks, three levels
+}
+TEST(CullScan, AMillionChunks) {
+    expect_scan_matches_cpu(1048576);     // 1024 blocks of 1024: their sums are one block
+    expect_scan_matches_cpu(1048576, 1);  // 4096 blocks of 256, 16 of those, one: three levels
+    expect_scan_matches_cpu(1048576 + 65537, 1);  // 4353 blocks, 18, one: partial blocks at each level
 }
 
 }  // namespace
