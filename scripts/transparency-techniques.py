@@ -42,7 +42,10 @@ def fail(msg, code=1):
 
 
 def run(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True)
+    except OSError as ex:
+        fail(f"cannot run {cmd[0]}: {ex}")
     if p.returncode != 0:
         fail(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr.strip()}")
     return p.stdout
@@ -76,7 +79,10 @@ def runs_here(pathlet, graph, e):
     ds = (e.get("data") or [{"phantom": "small"}])[0]
     t = str(e.get("time", "")).split(":")[0]
     cmd = [pathlet, "render", graph, "--size", "64x36", "--no-images", "--quiet", "--warmup", "0"] + data_args(ds)
-    p = subprocess.run(cmd + (["--time", t] if t else []), capture_output=True, text=True)
+    try:
+        p = subprocess.run(cmd + (["--time", t] if t else []), capture_output=True, text=True)
+    except OSError as ex:
+        fail(f"cannot run {pathlet}: {ex}")
     if p.returncode == 0:
         return ""
     line = next((l for l in p.stderr.split("\n") if "needs GL_" in l), "")
