@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -72,4 +73,46 @@ TEST(EveryTechnique, OneFadeHookGoesIntoEveryVariant2Graph) {
         ++graphs;
     }
     EXPECT_GE(graphs, 7u) << "variant2_oit, _ao, _vao, wboit, wboit_ao, mboit, mboit_ao at least";
+}
+
+TEST(EveryTechnique, TheOpaqueCoresAoCombinesWithEachBlendTechnique) {
+    // variant2_*_ao applies the core's LineAO per fragment inside the accumulation: with strength
+    // 0 (AO 1 everywhere) the picture is the plain technique's, with strength 2 it is darker.
+    Runtime& rt = test_runtime();
+    auto mean_luma = [](const Image& im, size_t& covered) {
+        double sum = 0.0;
+        covered = 0;
+        for (int y = 0; y < im.height; ++y)
+            for (int x = 0; x < im.width; ++x) {
+                const float r = im.at(x, y, 0), g = im.at(x, y, 1), b = im.at(x, y, 2);
+                if (r + g + b > 2.9f) continue;
+                ++covered;
+                sum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
+            }
+        return covered ? sum / double(covered) : 0.0;
+    };
+    for (const char* technique : {"variant2_wboit", "variant2_mboit"}) {
+        SCOPED_TRACE(technique);
+        RenderOptions opt;
+        opt.size = {160, 120};
+        opt.time.start = 6.0;
+        opt.graph_path = shipped_graph(technique).path;
+        opt.sets = {"line_width=1.2", "window=3", "overlay=false", "wall=false"};
+        const Frame plain = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        opt.graph_path = shipped_graph(std::string(technique) + "_ao").path;
+        opt.sets.push_back("strength=0");
+        const Frame unlit = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        opt.sets.back() = "strength=2";
+        const Frame lit = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        size_t n = 0, differ = 0;
+        for (size_t i = 0; i < plain["final"].pixels.size(); ++i)
+            differ += std::abs(plain["final"].pixels[i] - unlit["final"].pixels[i]) > 1.5f / 255;
+        EXPECT_EQ(differ, 0u) << "AO 1 must leave the technique's picture as it is";
+        size_t n_lit = 0;
+        const double before = mean_luma(unlit["final"], n), after = mean_luma(lit["final"], n_lit);
+        std::printf("%s_ao: mean luminance of covered pixels %.4f with AO strength 0, %.4f with 2\n", technique, before,
+                    after);
+        EXPECT_GT(n, 500u);
+        EXPECT_LT(after, before - 0.01) << "the core's AO darkens";
+    }
 }
