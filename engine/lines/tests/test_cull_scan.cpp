@@ -1,6 +1,6 @@
 // The culling's prefix sum (engine/lines/src/cull_scan.hpp, line_cull_scan.comp) against the
 // CPU's at sizes around its invocations and blocks: 1, 255, 256, 257, a block and one past it,
-// 65,537 and a million chunks, as the culler compiles it (4 chunks an invocation: two levels
+// 65,537 and a million chunks, as the culler compiles it (16 chunks an invocation: two levels
 // at a million) and with one chunk an invocation (blocks of 256: three levels).
 // Each chunk gets random flags and a segment count; the scan's offsets (drawn chunks only),
 // draw commands and counts must be the CPU's exactly, in both phases.
@@ -136,11 +136,11 @@ TEST(CullScan, AroundTheBlockSize) {
     expect_scan_matches_cpu(CullScan::kBlock + 1);
 }
 TEST(CullScan, TwoLevels) {
-    expect_scan_matches_cpu(65537);     // 65 blocks of 1024
+    expect_scan_matches_cpu(65537);     // 17 blocks of 4096
     expect_scan_matches_cpu(65537, 1);  // 257 blocks of 256: their sums are two blocks, three levels
 }
 TEST(CullScan, AMillionChunks) {
-    expect_scan_matches_cpu(1048576);     // 1024 blocks of 1024: their sums are one block
+    expect_scan_matches_cpu(1048576);     // 256 blocks of 4096: their sums are one block
     expect_scan_matches_cpu(1048576, 1);  // 4096 blocks of 256, 16 of those, one: three levels
     expect_scan_matches_cpu(1048576 + 65537, 1);  // 4353 blocks, 18, one: partial blocks at each level
 }
