@@ -12,6 +12,7 @@
 
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ public:
         const GLuint stats = ctx.buffer("stats").id;
         const GLuint zero[4] = {0, 0, 0, 0};
         glNamedBufferSubData(stats, 0, sizeof(zero), zero);
+        const GLuint fresh = 0;
+        glClearTexImage(ctx.texture("state").id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &fresh);
         const bool skip_empty = ctx.connected("coverage");
         if (skip_empty) {  // background everywhere first; the shader then runs on covered pixels only
             const glm::vec4 bg(ctx.params().v3("background"), 0.0f);
@@ -37,15 +40,30 @@ public:
         }
         ctx.bind_framebuffer({"color"}, skip_empty ? "coverage" : "");
         prog_->bind_texture("u_nodes", nodes);
-        prog_->use();  // heads, stats and the parameters by declaration
-        if (skip_empty) {
-            pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
-            ctx.draw_fullscreen_on_geometry(*prog_);
-        } else {
-            ctx.draw_fullscreen();
+        prog_->use();  // heads, carry, last, state, stats and the parameters by declaration
+        prog_->set("u_visit_budget", int(kVisitBudget));
+        // Draws until no pixel is pending: the pending count is read back after each draw (a
+        // wait; the reference is asked for its pixels). Most frames finish in the first draw.
+        const int max_draws = ctx.params().i("max_draws");
+        int draws = 0;
+        for (GLuint pending = 1; pending; ++draws) {
+            if (draws == max_draws)
+                throw std::runtime_error(std::to_string(pending) + " pixels still pending after max_draws = " +
+                                         std::to_string(max_draws) + " draws of " + std::to_string(kVisitBudget) +
+                                         " node visits each; raise max_draws");
+            glNamedBufferSubData(stats, 3 * sizeof(GLuint), sizeof(GLuint), &zero[0]);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+            if (skip_empty) {
+                pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
+                ctx.draw_fullscreen_on_geometry(*prog_);
+            } else {
+                ctx.draw_fullscreen();
+            }
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+            glGetNamedBufferSubData(stats, 3 * sizeof(GLuint), sizeof(GLuint), &pending);
         }
-        // The statistics through a fenced copy, read a frame or two late on a GPU: no wait.
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        ctx.stat("draws", double(draws));
+        // The other statistics through a fenced copy, read a frame or two late on a GPU.
         if (!stats_) stats_ = std::make_unique<pathlet::GpuReadback>(sizeof stats_seen_);
         if (const void* p = stats_->poll_newest()) std::memcpy(stats_seen_, p, sizeof stats_seen_);
         stats_->copy(stats, 0);
@@ -57,7 +75,10 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     std::unique_ptr<pathlet::GpuReadback> stats_;
-    GLuint stats_seen_[3] = {0, 0, 0};  // the newest statistics known
+    GLuint stats_seen_[4] = {0, 0, 0, 0};  // the newest statistics known
+    // Node visits per pixel and draw: far below the loop lengths drivers cut (llvmpipe cut
+    // pixels of 125 rounds x 253 fragments), so only a single list this long is ever cut.
+    static constexpr unsigned kVisitBudget = 8192;
 };
 
 pathlet::PassTypeInfo resolve_exact_type() {
@@ -72,6 +93,9 @@ pathlet::PassTypeInfo resolve_exact_type() {
         .param_float("min_transmittance", 1e-4, 0.0, 1.0,
                      "stop compositing a pixel when the light left through its fragments is below this (0: every "
                      "fragment)")
+        .param_int("max_draws", 256, 1, 65536,
+                   "draws of the resolve in a frame (each gives a pixel 8192 node visits, then carries its state to "
+                   "the next); a frame that needs more fails, naming this")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
         .input_texture("heads", "r32ui", "per-pixel list heads (fill_list)")
         .input_buffer("nodes", "list nodes (fill_list; with never_drop it holds every fragment)")
@@ -79,8 +103,13 @@ pathlet::PassTypeInfo resolve_exact_type() {
                        "fill_list's coverage depth: when connected, pixels without fragments are only cleared",
                        {.optional = true})
         .internal_buffer("stats",
-                         "peak list length, peak sorting rounds and pixels cut by the corrupt-list guard (uints)",
+                         "peak list length, peak sorting rounds, pixels cut (a corrupt list, or a driver's loop "
+                         "limit) and pixels pending for the next draw (uints)",
                          {.bytes = 16})
+        .internal_texture("carry", "rgba32f", "a pending pixel's colour so far and transmittance left")
+        .internal_texture("last", "rgba32ui", "a pending pixel's last fragment composited: depth bits, line id, "
+                                              "colour, node index")
+        .internal_texture("state", "r32ui", "per pixel: fresh, pending or done (this frame)")
         .output_texture("color", "rgba8", "composited colour, alpha 1 where any fragment landed")
         .make<ResolveExact>();
 }

@@ -4,20 +4,40 @@
 // the transmittance left is below u_min_transmittance. No fragment cap: the list is sorted in
 // rounds of a bounded local array (a block of K), as register/block sorts do (Knowles et al.
 // 2014): each round walks the list and keeps, by insertion, the K nearest fragments after the
-// last one composited; a round that finds fewer than K was the last. Cost: rounds x length,
-// registers: K, independent of the depth complexity.
+// last one composited; a round that finds fewer than K was the last. Registers: K.
+//
+// Work per invocation is bounded too (drivers cut or time out long shader loops; llvmpipe ends
+// one silently): a draw stops a pixel after u_visit_budget node visits and carries its state
+// (colour so far, transmittance, last fragment composited) to the next draw in images; the pass
+// draws again while pixels are pending. Only a single walk longer than the budget is cut.
 #include "oit_list.glsl"
 
 #define K SORT_BLOCK
 #define MAX_WALK 0x1000000u  // only a corrupt (cyclic) list is longer: then the pixel is counted
 
+#define STATE_FRESH 0u
+#define STATE_PENDING 1u
+#define STATE_DONE 2u
+
 layout(r32ui) uniform readonly uimage2D u_heads;  // the pins, by declaration
 uniform usamplerBuffer u_nodes;                   // the pass's view of the `nodes` buffer
-layout(std430, binding = STATS_BINDING) buffer OitExactStats { uint peak_nodes; uint peak_rounds; uint cut_pixels; };
+layout(rgba32f) uniform image2D u_carry;          // colour composited so far, transmittance left
+layout(rgba32ui) uniform uimage2D u_last;         // the last fragment composited: depth bits, id, colour, node
+layout(r32ui) uniform uimage2D u_state;           // STATE_*
+layout(std430, binding = STATS_BINDING) buffer OitExactStats {
+    uint peak_nodes;
+    uint peak_rounds;
+    uint cut_pixels;
+    uint pending_pixels;  // left for the next draw
+};
 uniform float u_min_transmittance;
 uniform vec3 u_background;
+uniform int u_visit_budget;  // node visits per pixel and draw
 
 layout(location = 0) out vec4 o_color;
+// The coverage's depth test before the shader, although it writes images: pixels without
+// fragments are skipped, never shaded (draw_fullscreen_on_geometry).
+layout(early_fragment_tests) in;
 
 // (d, id, c, n) comes before (d2, id2, c2, n2): the lists' order, made total by the node index.
 bool before(float d, uint id, uint c, uint n, float d2, uint id2, uint c2, uint n2) {
@@ -25,8 +45,12 @@ bool before(float d, uint id, uint c, uint n, float d2, uint id2, uint c2, uint 
 }
 
 void main() {
-    uint head = imageLoad(u_heads, ivec2(gl_FragCoord.xy)).r;
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    uint state = imageLoad(u_state, p).r;
+    if (state == STATE_DONE) discard;  // finished in an earlier draw: its colour stays
+    uint head = imageLoad(u_heads, p).r;
     if (head == OIT_END) {  // no fragment: the background
+        imageStore(u_state, p, uvec4(STATE_DONE));
         o_color = vec4(u_background, 0.0);
         return;
     }
@@ -34,14 +58,16 @@ void main() {
     uint lid[K], col[K], idx[K];
     dep[K - 1] = 1.0, lid[K - 1] = 0u, col[K - 1] = 0u, idx[K - 1] = 0u;  // only the first n are read
     // The last fragment composited (the round's threshold); none before the first round.
-    bool first = true;
-    float pd = 0.0;
-    uint pid = 0u, pc = 0u, pn = 0u;
-    vec3 rgb = vec3(0.0);
-    float t = 1.0;  // transmittance left
-    uint len = 0u, rounds = 0u;
+    bool first = state == STATE_FRESH;
+    vec4 carry = first ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(u_carry, p);
+    uvec4 last = first ? uvec4(0u) : imageLoad(u_last, p);
+    float pd = uintBitsToFloat(last.x);
+    uint pid = last.y, pc = last.z, pn = last.w;
+    vec3 rgb = carry.rgb;
+    float t = carry.a;  // transmittance left
+    uint len = 0u, rounds = 0u, visits = 0u;
     bool cut = false, finished = false;
-    for (;;) {
+    while (visits < uint(u_visit_budget)) {
         int n = 0;
         uint walked = 0u;
         for (uint i = head; i != OIT_END;) {
@@ -70,6 +96,7 @@ void main() {
         }
         if (rounds == 0u) len = walked;
         else if (walked != len) cut = true;  // the same list walked short: a loop cut by the driver
+        visits += walked;
         ++rounds;
         for (int k = 0; k < n && t >= u_min_transmittance; ++k) {
             vec4 c = unpackUnorm4x8(col[k]);
@@ -86,9 +113,16 @@ void main() {
     // Plain reads first: the peaks only grow, so most pixels need no (contended) atomic.
     if (len > peak_nodes) atomicMax(peak_nodes, len);
     if (rounds > peak_rounds) atomicMax(peak_rounds, rounds);
-    // Software rasterizers bound a shader's loops (llvmpipe: 65535 iterations) and leave them
-    // without a word: a pixel whose loop ended otherwise than above is counted, never hidden.
-    if (cut || !finished) atomicAdd(cut_pixels, 1u);
+    if (!finished && visits < uint(u_visit_budget)) cut = true;  // the loop ended otherwise: cut by the driver
+    if (cut) atomicAdd(cut_pixels, 1u);
+    if (!finished && !cut) {  // the budget is spent: the next draw goes on from here
+        imageStore(u_carry, p, vec4(rgb, t));
+        imageStore(u_last, p, uvec4(floatBitsToUint(pd), pid, pc, pn));
+        imageStore(u_state, p, uvec4(STATE_PENDING));
+        atomicAdd(pending_pixels, 1u);
+        discard;
+    }
+    imageStore(u_state, p, uvec4(STATE_DONE));
     // Alpha 1 wherever a fragment landed, as resolve_list's colour.
     o_color = vec4(rgb + t * u_background, 1.0);
 }
