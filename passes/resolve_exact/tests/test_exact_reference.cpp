@@ -179,7 +179,8 @@ TEST(ExactReference, EveryFragmentWhateverTheSortBlock) {
         return render("variant2_exact", s, {320, 180}, 9.0, v);
     };
     const Frame b16 = with("16"), b4 = with("4"), b64 = with("64"), b1 = with("1");
-    ASSERT_GT(b16.stats.at("peak_nodes_per_pixel"), 64.0 / 2) << "the lists should be longer than 64 fragments";
+    // Stats are means over the two frames, and the first sees no count yet (read without a wait).
+    ASSERT_GT(2 * b16.stats.at("peak_nodes_per_pixel"), 64.0) << "the lists should be longer than 64 fragments";
     EXPECT_EQ(b16.stats.at("draws"), 1.0);
     EXPECT_GT(b1.stats.at("draws"), 2.0) << "one fragment a round should need more than one draw's budget";
     for (const Frame* f : {&b16, &b4, &b64, &b1}) {
