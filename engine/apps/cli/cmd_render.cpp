@@ -182,9 +182,9 @@ int run(const std::vector<std::string>& argv) {
                             std::to_string(r.frames) + " frames, " + std::to_string(scene.lines.line_count()) +
                             " lines, " + std::to_string(scene.lines.point_count()) + " points";
         std::printf("%s", r.profiler.table(title).c_str());
+        mark_folders(folders, opt.graph_path);
         if (!r.files.empty())
             std::fprintf(stderr, "wrote %zu file(s), e.g. %s\n", r.files.size(), r.files.back().c_str());
-        mark_folders(folders, opt.graph_path);
         if (!report.empty()) {
             json meta = {{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()}, {"size", {opt.size.x, opt.size.y}},
                          {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables},

@@ -74,12 +74,12 @@ void translate(std::exception_ptr p) {
         if (p) std::rethrow_exception(p);
     } catch (const GraphError& e) {
         raise_graph_error(e);
-    } catch (const ClosedError& e) {
     } catch (const GraphNotFound& e) {  // a graph name that names nothing: one problem, of no file
         py::dict d;
         d["file"] = "", d["pointer"] = "", d["message"] = e.what(), d["line"] = 0, d["column"] = 0, d["text"] = e.what();
         py::object cls = py::module_::import("pathlet._errors").attr("GraphError");
         PyErr_SetObject(cls.ptr(), cls(e.what(), py::make_tuple(d)).ptr());
+    } catch (const ClosedError& e) {
         raise_as("ClosedError", e);
     } catch (const DataError& e) {
         raise_as("DataError", e);
