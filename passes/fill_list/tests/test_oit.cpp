@@ -5,6 +5,7 @@
 
 #include "executor.hpp"
 #include "golden.hpp"
+#include "oit_lists.hpp"
 
 #include <map>
 #include <gtest/gtest.h>
@@ -40,10 +41,7 @@ Frame render(const std::string& graph, std::vector<std::string> sets, const std:
 }
 
 // The lists as the GPU left them: heads and nodes, read in the frame callback.
-struct Lists {
-    int width = 0, height = 0;
-    std::vector<GLuint> heads;             // GL rows (bottom-up)
-    std::vector<glm::uvec4> nodes;
+struct Lists : OitLists {
     Image color;                           // resolve_list's output (top-down)
 };
 
@@ -58,22 +56,12 @@ Lists render_lists(std::vector<std::string> sets) {
     opt.quiet = true;
     Lists l;
     render(test_runtime(), helix_bundle_scene(), opt, [&](const Executor& ex, size_t) {
-        Texture h = ex.texture("heads");
-        l.width = h.width;
-        l.height = h.height;
-        l.heads.resize(size_t(h.width) * size_t(h.height));
-        glGetTextureImage(h.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(l.heads.size() * 4), l.heads.data());
-        Buffer b = ex.buffer("nodes");
-        l.nodes.resize(b.bytes / 16);
-        glGetNamedBufferSubData(b.id, 0, GLsizeiptr(l.nodes.size() * 16), l.nodes.data());
+        static_cast<OitLists&>(l) = read_oit_lists(ex);
         l.color = read_resource(ex.texture("color"));
     });
     return l;
 }
 
-glm::dvec4 unpack(GLuint c) {
-    return glm::dvec4(c & 255u, (c >> 8) & 255u, (c >> 16) & 255u, c >> 24) / 255.0;
-}
 
 }  // namespace
 
@@ -100,7 +88,7 @@ TEST(Oit, ResolveEqualsACpuBlendOfTheSameFragments) {
             double alpha = 0.0;
             for (const auto& f : frags) {
                 if (alpha >= 0.99) break;
-                glm::dvec4 rgba = unpack(f.x);
+                glm::dvec4 rgba = node_color(f.x);
                 double w = (1.0 - alpha) * rgba.a;
                 c += w * glm::dvec3(rgba);
                 alpha += w;

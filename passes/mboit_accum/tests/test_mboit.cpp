@@ -7,6 +7,7 @@
 #include "executor.hpp"
 #include "frame_capture.hpp"
 #include "golden.hpp"
+#include "oit_lists.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,10 +25,7 @@ const std::string kSrc = PATHLET_SOURCE_DIR;
 const std::string kHere = PATHLET_TEST_SOURCE_DIR;
 const glm::ivec2 kSmall{160, 120};
 
-struct Lists {
-    int width = 0, height = 0;
-    std::vector<GLuint> heads;  // GL rows (bottom-up)
-    std::vector<glm::uvec4> nodes;
+struct Lists : OitLists {
     Image exact, mboit;         // top-down
     Camera camera;
 };
@@ -44,26 +42,13 @@ Lists render_lists(const std::string& graph, std::vector<std::string> sets) {
     Lists l;
     l.camera = frame_bounds(helix_bundle_scene().bounds(), opt.size);
     render(test_runtime(), helix_bundle_scene(), opt, [&](const Executor& ex, size_t) {
-        Texture h = ex.texture("heads");
-        l.width = h.width;
-        l.height = h.height;
-        l.heads.resize(size_t(h.width) * size_t(h.height));
-        glGetTextureImage(h.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(l.heads.size() * 4), l.heads.data());
-        Buffer b = ex.buffer("nodes");
-        l.nodes.resize(b.bytes / 16);
-        glGetNamedBufferSubData(b.id, 0, GLsizeiptr(l.nodes.size() * 16), l.nodes.data());
+        static_cast<OitLists&>(l) = read_oit_lists(ex);
         l.exact = read_resource(ex.texture("exact"));
         l.mboit = read_resource(ex.texture("mboit"));
     });
     return l;
 }
 
-glm::dvec4 unpack(GLuint c) { return glm::dvec4(c & 255u, (c >> 8) & 255u, (c >> 16) & 255u, c >> 24) / 255.0; }
-double depth_of(const glm::uvec4& n) {
-    float d;
-    std::memcpy(&d, &n.y, 4);
-    return d;
-}
 
 // Transmittance in front of z0 from 4 moments (b0, b1..b4), the paper's way in double.
 double transmittance4(double b0, const std::array<double, 4>& b, double z0, double bias = 5e-7, double beta = 0.1) {
@@ -116,9 +101,9 @@ TEST(Mboit, EqualsACpuMboitOfTheSameFragments) {
             struct F { glm::dvec4 c; double z, absorb; };
             std::vector<F> frags;
             for (GLuint i = l.heads[size_t(y) * size_t(l.width) + size_t(x)]; i != 0xFFFFFFFFu; i = l.nodes.at(i).z) {
-                glm::dvec4 c = unpack(l.nodes[i].x);
+                glm::dvec4 c = node_color(l.nodes[i].x);
                 c.a = std::min(c.a, 0.9999);
-                frags.push_back({c, warp(depth_of(l.nodes[i])), -std::log(1.0 - c.a)});
+                frags.push_back({c, warp(node_depth(l.nodes[i])), -std::log(1.0 - c.a)});
             }
             if (frags.empty()) continue;
             ++pixels;

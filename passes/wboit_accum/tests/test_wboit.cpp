@@ -4,6 +4,7 @@
 #include "executor.hpp"
 #include "frame_capture.hpp"
 #include "golden.hpp"
+#include "oit_lists.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,10 +21,7 @@ const std::string kSrc = PATHLET_SOURCE_DIR;
 const std::string kHere = PATHLET_TEST_SOURCE_DIR;
 const glm::ivec2 kSmall{160, 120};
 
-struct Lists {
-    int width = 0, height = 0;
-    std::vector<GLuint> heads;  // GL rows (bottom-up)
-    std::vector<glm::uvec4> nodes;
+struct Lists : OitLists {
     Image exact, wboit;         // top-down
 };
 
@@ -38,26 +36,13 @@ Lists render_lists(std::vector<std::string> sets) {
     opt.quiet = true;
     Lists l;
     render(test_runtime(), helix_bundle_scene(), opt, [&](const Executor& ex, size_t) {
-        Texture h = ex.texture("heads");
-        l.width = h.width;
-        l.height = h.height;
-        l.heads.resize(size_t(h.width) * size_t(h.height));
-        glGetTextureImage(h.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(l.heads.size() * 4), l.heads.data());
-        Buffer b = ex.buffer("nodes");
-        l.nodes.resize(b.bytes / 16);
-        glGetNamedBufferSubData(b.id, 0, GLsizeiptr(l.nodes.size() * 16), l.nodes.data());
+        static_cast<OitLists&>(l) = read_oit_lists(ex);
         l.exact = read_resource(ex.texture("exact"));
         l.wboit = read_resource(ex.texture("wboit"));
     });
     return l;
 }
 
-glm::dvec4 unpack(GLuint c) { return glm::dvec4(c & 255u, (c >> 8) & 255u, (c >> 16) & 255u, c >> 24) / 255.0; }
-double depth_of(const glm::uvec4& n) {
-    float d;
-    std::memcpy(&d, &n.y, 4);
-    return d;
-}
 
 // wboit_accum's default weight, exponential with falloff 25 (and the paper's eq. 10, depth_cubed).
 double weight(double a, double d) { return a * std::max(1e-4, 3e3 * std::exp(-25.0 * d)); }
@@ -77,8 +62,8 @@ TEST(Wboit, EqualsACpuWboitOfTheSameFragments) {
             double revealage = 1.0;
             int n = 0;
             for (GLuint i = l.heads[size_t(y) * size_t(l.width) + size_t(x)]; i != 0xFFFFFFFFu; i = l.nodes.at(i).z) {
-                const glm::dvec4 c = unpack(l.nodes[i].x);
-                const double w = eq10 ? weight_eq10(c.a, depth_of(l.nodes[i])) : weight(c.a, depth_of(l.nodes[i]));
+                const glm::dvec4 c = node_color(l.nodes[i].x);
+                const double w = eq10 ? weight_eq10(c.a, node_depth(l.nodes[i])) : weight(c.a, node_depth(l.nodes[i]));
                 acc += glm::dvec4(glm::dvec3(c) * c.a, c.a) * w;
                 revealage *= 1.0 - c.a;
                 ++n;
