@@ -4,12 +4,20 @@ variant 4 at a few settings, and the two baselines of issue 36 tuned to each var
 pixel coverage: a uniform opacity and a speed -> opacity transfer function (both times the end
 fade, on variant2_oit_ao's pipeline). Each baseline is run on a grid of its parameter and
 interpolated at the coverage, then, for the first setting, tuned by bisection to confirm.
-"Dominates" = higher focus visibility and higher context coverage than both baselines.
+"Dominates" = higher focus visibility and higher context coverage than both baselines. Each
+variant 4 setting's clearing is printed too: opacity_resolve's depth complexity D (fragments per
+covered pixel of its lists) and the factor of q and r its `adapt` rule took (1 with adapt=fixed).
 
-  PYTHONPATH=build/python scripts/transparency-table.py --phantom study --size 1280x720
+  PYTHONPATH=build/python scripts/transparency-table.py --phantom study --size 1280x720 --setting "" --setting adapt=fixed
   PYTHONPATH=build/python scripts/transparency-table.py --data arch.pathlet --setting q=10,r=0.5,lambda=2
+  PYTHONPATH=build/python scripts/transparency-table.py --data tracks300.trk --pseudo-time --time 5:5.4:0.04
 """
 import argparse
+import json
+import os
+import shutil
+import subprocess
+import tempfile
 
 import pathlet
 
@@ -24,6 +32,25 @@ def measure(scene, args, graph, sets):
     if "not_measured" in r:
         raise SystemExit(f"{graph}: not measured: {r['not_measured']}")
     return r
+
+
+def clearing(args, sets):
+    """opacity_resolve's stats at the run's end (`pathlet render --report`; the Python render
+    needs numpy): depth complexity and the factor of q and r; nan where the command is absent."""
+    here = os.path.join(os.path.dirname(pathlet.__file__), "..", "..", "bin", "pathlet")
+    exe = os.environ.get("PATHLET_BIN") or (here if os.path.exists(here) else shutil.which("pathlet"))
+    if not exe:
+        return float("nan"), float("nan")
+    with tempfile.TemporaryDirectory() as d:
+        cmd = [exe, "render", "variant4_opacity", "--size", args.size, "--time", args.time, "--no-images", "--quiet",
+               "--report", os.path.join(d, "r")]
+        cmd += ["--data", args.data] + (["--pseudo-time"] if args.pseudo_time else []) if args.data else ["--phantom", args.phantom]
+        for x in sets:
+            cmd += ["--set", x]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        with open(os.path.join(d, "r.json")) as f:
+            stats = next((p.get("stats", {}) for p in json.load(f)["passes"] if p["name"] == "opacity_resolve"), {})
+    return stats.get("depth_complexity", float("nan")), stats.get("clearing_scale", float("nan"))
 
 
 def row(label, r):
@@ -62,13 +89,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--phantom", default="study")
     ap.add_argument("--data", help="a pathline file instead of the phantom")
+    ap.add_argument("--pseudo-time", action="store_true", help="streamlines (tracts) animated along their arc length")
     ap.add_argument("--size", default="1280x720")
     ap.add_argument("--time", default="9:9.4:0.04")
     ap.add_argument("--setting", action="append",
                     help="variant 4 overrides, comma-separated NAME=VALUE (repeatable; default: the graph's defaults)")
     ap.add_argument("--no-tune", action="store_true", help="interpolate only")
     args = ap.parse_args()
-    scene = pathlet.load(args.data) if args.data else pathlet.phantom(args.phantom)
+    scene = pathlet.load(args.data, pseudo_time=args.pseudo_time) if args.data else pathlet.phantom(args.phantom)
     settings = [[x for x in s.split(",") if x] for s in args.setting] if args.setting else [[]]
 
     print(f"{scene!r}, {args.size}, t = {args.time}, renderer {pathlet.gl_renderer()}\n")
@@ -89,16 +117,17 @@ def main():
         results.append((s, r))
         print(row("variant 4 " + (" ".join(s) if s else "(defaults)"), r), flush=True)
 
-    print("\n| variant 4 | focus visibility | context coverage | uniform at its coverage | speed TF at its coverage "
-          "| dominates both | alpha change mean vs variant 2's |")
-    print("|---|---|---|---|---|---|---|")
+    print("\n| variant 4 | depth complexity, q r factor | focus visibility | context coverage | uniform at its coverage "
+          "| speed TF at its coverage | dominates both | alpha change mean vs variant 2's |")
+    print("|---|---|---|---|---|---|---|---|")
     v2 = measure(scene, args, "variant2_oit", [])
     for s, r in results:
         u = interpolate(grids["uniform"], r["pixel_coverage"])
         t = interpolate(grids["speed TF"], r["pixel_coverage"])
         dom = r["focus_visibility"] > max(u[0], t[0]) and r["context_coverage"] > max(u[1], t[1])
         steady = r["alpha_change_mean"] <= v2["alpha_change_mean"]
-        print(f"| {' '.join(s) or '(defaults)'} | {r['focus_visibility']:.4f} | {r['context_coverage']:.4f} | "
+        depth, scale = clearing(args, s)
+        print(f"| {' '.join(s) or '(defaults)'} | {depth:.2f}, {scale:.3f} | {r['focus_visibility']:.4f} | {r['context_coverage']:.4f} | "
               f"{u[0]:.4f}, {u[1]:.4f} | {t[0]:.4f}, {t[1]:.4f} | {'yes' if dom else 'no'} | "
               f"{r['alpha_change_mean']:.4f} vs {v2['alpha_change_mean']:.4f} ({'no larger' if steady else 'LARGER'}) |",
               flush=True)
