@@ -40,10 +40,6 @@ void main() {
 }  // namespace
 
 GpuBoxFilter::~GpuBoxFilter() {
-    for (const Target& t : targets_) {
-        glDeleteFramebuffers(1, &t.fbo);
-        glDeleteTextures(1, &t.tex);
-    }
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (program_) glDeleteProgram(program_);
 }
@@ -57,20 +53,7 @@ void GpuBoxFilter::ensure_program() {
 
 GLuint GpuBoxFilter::sums(GLuint src, int w, int h, int factor, size_t slot) {
     ensure_program();
-    if (targets_.size() <= slot) targets_.resize(slot + 1);
-    Target& t = targets_[slot];
-    if (t.w != w || t.h != h) {
-        if (t.tex) {
-            glDeleteFramebuffers(1, &t.fbo);
-            glDeleteTextures(1, &t.tex);
-        }
-        glCreateTextures(GL_TEXTURE_2D, 1, &t.tex);
-        glTextureStorage2D(t.tex, 1, GL_RGBA32F, w, h);
-        glCreateFramebuffers(1, &t.fbo);
-        glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.tex, 0);
-        t.w = w;
-        t.h = h;
-    }
+    const OutputTargets::Target& t = targets_.at(slot, w, h);
     glProgramUniform1i(program_, factor_loc_, factor);
     draw_output_program(program_, vao_, t.fbo, w, h, src);
     return t.tex;
@@ -117,11 +100,7 @@ bool GpuBoxFilter::measure(GLenum internal_format, int factor) {
     } catch (const std::exception&) {  // cannot be read back as floats, or no program: the CPU filters
         same = false;
     }
-    while (targets_.size() > slot) {
-        glDeleteFramebuffers(1, &targets_.back().fbo);
-        glDeleteTextures(1, &targets_.back().tex);
-        targets_.pop_back();
-    }
+    targets_.truncate(slot);
     glDeleteTextures(1, &tex);
     return same;
 }

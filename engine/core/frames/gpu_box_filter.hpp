@@ -10,6 +10,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include "output_program.hpp"
 
 #include <cstddef>
 #include <map>
@@ -35,16 +36,12 @@ public:
     GLuint sums(GLuint src, int w, int h, int factor, size_t slot);
 
 private:
-    struct Target {
-        GLuint tex = 0, fbo = 0;
-        int w = 0, h = 0;
-    };
     void ensure_program();
     bool measure(GLenum internal_format, int factor);
 
     GLuint program_ = 0, vao_ = 0;
     GLint factor_loc_ = -1;
-    std::vector<Target> targets_;
+    OutputTargets targets_{GL_RGBA32F};
     std::map<std::pair<GLenum, int>, bool> exact_;
 };
 

@@ -40,10 +40,6 @@ double steps_of(GLenum depth_format) {
 }  // namespace
 
 GpuDepthCopy::~GpuDepthCopy() {
-    for (const Target& t : targets_) {
-        glDeleteFramebuffers(1, &t.fbo);
-        glDeleteTextures(1, &t.tex);
-    }
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (sampler_) glDeleteSamplers(1, &sampler_);
     if (program_) glDeleteProgram(program_);
@@ -60,20 +56,7 @@ GLuint GpuDepthCopy::to_float(GLuint src, GLenum depth_format, int w, int h, siz
         glSamplerParameteri(sampler_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glSamplerParameteri(sampler_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
-    if (targets_.size() <= slot) targets_.resize(slot + 1);
-    Target& t = targets_[slot];
-    if (t.w != w || t.h != h) {
-        if (t.tex) {
-            glDeleteFramebuffers(1, &t.fbo);
-            glDeleteTextures(1, &t.tex);
-        }
-        glCreateTextures(GL_TEXTURE_2D, 1, &t.tex);
-        glTextureStorage2D(t.tex, 1, GL_R32F, w, h);
-        glCreateFramebuffers(1, &t.fbo);
-        glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.tex, 0);
-        t.w = w;
-        t.h = h;
-    }
+    const OutputTargets::Target& t = targets_.at(slot, w, h);
     const auto it = exact_.find(depth_format);  // mode 1 only where measured so
     const bool redivide = it != exact_.end() && it->second == 1;
     glProgramUniform1d(program_, steps_loc_, redivide ? steps_of(depth_format) : 0.0);
@@ -130,11 +113,7 @@ bool GpuDepthCopy::measure(GLenum depth_format) {
     } catch (const std::exception&) {  // no program or no read: the depth is read as it is
         same = false;
     }
-    while (targets_.size() > slot) {
-        glDeleteFramebuffers(1, &targets_.back().fbo);
-        glDeleteTextures(1, &targets_.back().tex);
-        targets_.pop_back();
-    }
+    targets_.truncate(slot);
     glDeleteTextures(1, &tex);
     return same;
 }

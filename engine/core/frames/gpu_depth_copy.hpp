@@ -10,6 +10,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include "output_program.hpp"
 
 #include <cstddef>
 #include <map>
@@ -34,15 +35,11 @@ public:
     GLuint to_float(GLuint src, GLenum depth_format, int w, int h, size_t slot);
 
 private:
-    struct Target {
-        GLuint tex = 0, fbo = 0;
-        int w = 0, h = 0;
-    };
     bool measure(GLenum depth_format);
 
     GLuint program_ = 0, vao_ = 0, sampler_ = 0;
     GLint steps_loc_ = -1;
-    std::vector<Target> targets_;
+    OutputTargets targets_{GL_R32F};
     std::map<GLenum, int> exact_;  // the exact mode (kFragment's): 0, 1, or -1 for none
 };
 

@@ -78,4 +78,30 @@ void draw_output_program(GLuint program, GLuint vao, GLuint fbo, int w, int h, G
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+const OutputTargets::Target& OutputTargets::at(size_t slot, int w, int h) {
+    if (targets_.size() <= slot) targets_.resize(slot + 1);
+    Target& t = targets_[slot];
+    if (t.w != w || t.h != h) {
+        if (t.tex) {
+            glDeleteFramebuffers(1, &t.fbo);
+            glDeleteTextures(1, &t.tex);
+        }
+        glCreateTextures(GL_TEXTURE_2D, 1, &t.tex);
+        glTextureStorage2D(t.tex, 1, format_, w, h);
+        glCreateFramebuffers(1, &t.fbo);
+        glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.tex, 0);
+        t.w = w;
+        t.h = h;
+    }
+    return t;
+}
+
+void OutputTargets::truncate(size_t n) {
+    while (targets_.size() > n) {
+        glDeleteFramebuffers(1, &targets_.back().fbo);
+        glDeleteTextures(1, &targets_.back().tex);
+        targets_.pop_back();
+    }
+}
+
 }  // namespace pathlet

@@ -4,6 +4,9 @@
 
 #include <pathlet/gl.hpp>
 
+#include <cstddef>
+#include <vector>
+
 namespace pathlet {
 
 // Links the fullscreen triangle with `fragment` (GLSL 450); throws std::runtime_error starting
@@ -16,5 +19,29 @@ GLuint link_output_program(const char* fragment, const char* what);
 // resets these before every pass) and leaves program, framebuffer, vertex array, unit 0 and its
 // sampler unbound.
 void draw_output_program(GLuint program, GLuint vao, GLuint fbo, int w, int h, GLuint src, GLuint sampler = 0);
+
+// The output programs' render targets, one a slot (a slot is reused frame after frame; a new
+// size replaces its texture). GL thread; deletes what it made.
+class OutputTargets {
+public:
+    explicit OutputTargets(GLenum format) : format_(format) {}
+    ~OutputTargets() { truncate(0); }
+    OutputTargets(const OutputTargets&) = delete;
+    OutputTargets& operator=(const OutputTargets&) = delete;
+
+    struct Target {
+        GLuint tex = 0, fbo = 0;
+        int w = 0, h = 0;
+    };
+    // The slot's target, made or remade at w x h.
+    const Target& at(size_t slot, int w, int h);
+    size_t size() const { return targets_.size(); }
+    // Deletes the targets from slot `n` on (a measurement's own slot, dropped afterwards).
+    void truncate(size_t n);
+
+private:
+    GLenum format_;
+    std::vector<Target> targets_;
+};
 
 }  // namespace pathlet
