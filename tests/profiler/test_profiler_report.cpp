@@ -112,12 +112,16 @@ TEST(ProfilerReport, WallFpsSpansTheMeasuredFramesToTheFlush) {
     EXPECT_NEAR(j["frame"]["wall_fps"].get<double>(), 8 * 1000.0 / 152.0, 1e-9);
 }
 
-// A run whose frame times spread beyond p95/p5 = 1.5 is flagged; a steady one is not.
+// A run whose frame times spread beyond p95/p5 = 1.5 is flagged in the JSON; a steady one is not.
+// The table says UNSTABLE only for a GPU's timestamps (a clock that changed): on llvmpipe's
+// finish-bracketed clocks a spread is the shared CPU's load, and the README promises the word
+// for GPUs only (issue 41).
 TEST(ProfilerReport, UnstableRunsAreFlaggedInTableAndJson) {
     FakeRun spread(10);  // frames 7.5 .. 14.5 ms: p95/p5 ~ 1.8
     spread.p.flush();
     EXPECT_TRUE(spread.p.unstable());
-    EXPECT_NE(spread.p.table("t").find("UNSTABLE: frame times p95/p5 = "), std::string::npos);
+    EXPECT_EQ(spread.p.backend(), TimingBackend::CpuFinish);
+    EXPECT_EQ(spread.p.table("t").find("UNSTABLE"), std::string::npos);
     EXPECT_TRUE(spread.p.to_json({})["frame"]["unstable"].get<bool>());
 
     Profiler steady;

@@ -119,7 +119,7 @@ std::string Profiler::table(const std::string& title) const {
     out << row("frame", frame, fmt("%9.1f%%", frame.n ? 100.0 : 0.0), frame_cpu_ms());
     out << name_col("fps (median frame)") << fmt("%10.1f", fps(frame)) << "\n";
     out << name_col("fps (wall clock)") << fmt("%10.1f", wall_fps()) << "\n";
-    if (unstable(frame))
+    if (backend_ == TimingBackend::GlTimestamp && unstable(frame))  // a GPU's clocks; a shared CPU's spread says nothing
         out << "UNSTABLE: frame times p95/p5 = " << fmt("%.2f", frame.p95 / frame.p5) << " > " << fmt("%.1f", kUnstableRatio)
             << " (a clock that changed during the run, or other load): quote the range, not the median\n";
     // What passes counted (segments drawn, OIT nodes, overflow events...), mean per frame.
