@@ -7,6 +7,7 @@
 #include "cli_run.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 
@@ -112,10 +113,20 @@ TEST(CliMistakes, ATimeOutsideTheDataIsAnErrorNamingItsSpanUnlessEmptyFramesAreA
     CliRun r = in(d, "quality --time 40:41:0.5 --phantom small");
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("0..4 s"), std::string::npos) << r.err;
+    // bench the same, before any run or results folder (the class, not only render).
+    r = in(d, "bench variant1_lineao --time 50 --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --out b");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("the data's time span, 0..4 s"), std::string::npos) << r.err;
+    if (fs::exists(d + "/b/results.json")) {  // bench leaves its (empty) results before the data is loaded
+        std::ifstream in(d + "/b/results.json");
+        EXPECT_TRUE(nlohmann::json::parse(in)["runs"].empty()) << "no run for a refused time";
+    }
     r = in(d, "render --time 50 --allow-empty-frames" + std::string(kSmall));
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(d + "/out/variant1_lineao/00000.png"));
-    EXPECT_NE(pathlet_cli("render --help").out.find("--allow-empty-frames"), std::string::npos) << "documented";
+    for (const char* cmd : {"render", "bench", "quality", "view"})
+        EXPECT_NE(pathlet_cli(std::string(cmd) + " --help").out.find("--allow-empty-frames"), std::string::npos)
+            << cmd << ": documented";
 }
 
 TEST(CliMistakes, AGraphWithoutANameIsNamedAfterItsFileAndAFolderSharedByTwoGraphsGetsANote) {

@@ -44,7 +44,7 @@ struct BenchOptions {
     Given<std::string> sizes{"1280x720"}, time{""};
     Given<int> frames{10}, warmup{3};
     TimingBackend timing = TimingBackend::Auto;
-    bool no_images = false, plots = false, quiet = false;
+    bool no_images = false, plots = false, quiet = false, allow_empty = false;
     PluginOptions plugins;
     SceneOptions data;
 
@@ -72,7 +72,10 @@ struct BenchOptions {
                    "label, or its position 1, 2, ...) in that one only; unknown names are errors");
         declare_timing(a, timing);
         declare_camera(a, camera);
-        a.option("report", report, "PREFIX", "write PREFIX.csv and PREFIX.json with every pass of every run")
+        a.flag("allow-empty-frames", allow_empty,
+               "time the --time asked for even where it lies outside the data's time span (empty frames); "
+               "without it such a time is an error naming the span")
+            .option("report", report, "PREFIX", "write PREFIX.csv and PREFIX.json with every pass of every run")
             .flag("no-images", no_images, "--experiment or --out: no representative image per run")
             .flag("plots", plots, "--experiment, --merge: also PNG and PDF figures with Matplotlib (python3 -m pathlet.plot)")
             .flag("quiet", quiet, "no progress line");
@@ -286,7 +289,12 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
     };
     Progress progress("runs", p.mine, o.quiet);
     bench::ExperimentHooks hooks;
-    hooks.load_data = [&](size_t d) { return p.e.data.empty() ? o.data.load(true) : bench::load_data_set(p.e.data[d]); };
+    hooks.load_data = [&](size_t d) {
+        Scene scene = p.e.data.empty() ? o.data.load(true) : bench::load_data_set(p.e.data[d]);
+        // A --time outside the data would time empty frames (issue 41): the span, before any run.
+        if (!o.time.value.empty()) check_time_in_data(parse_time_range(o.time.value), o.time.value, scene, o.allow_empty);
+        return scene;
+    };
     hooks.stop = [] { return g_interrupted != 0; };
     hooks.on_report = [&](const json& results, const bench::RunDone* run) {
         f.results = results;
@@ -351,7 +359,7 @@ void check_options_used(const Args& a, const BenchOptions& o) {
     const std::vector<std::string> rendering = {
         "experiment", "shard", "size", "time", "frames", "warmup", "set", "timing", "camera", "report", "no-images",
         "data", "mesh", "phantom", "time-array", "velocity-array", "time-step", "units", "streamlines", "pseudo-time",
-        "plugin-dir", "trust-graph-plugins", "quiet"};
+        "allow-empty-frames", "plugin-dir", "trust-graph-plugins", "quiet"};
     auto all_but = [&](std::vector<std::string> keep) {
         std::vector<std::string> out = rendering;
         out.insert(out.end(), {"compare", "against", "threshold", "plots", "out", "merge"});

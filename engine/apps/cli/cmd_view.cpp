@@ -44,13 +44,16 @@ struct ViewOptions {
     glm::ivec2 size{1280, 720};
     std::vector<std::string> sets;
     long exit_after = 0;
-    bool no_ui = false;
+    bool no_ui = false, allow_empty = false;
     PluginOptions plugins;
     SceneOptions data;
 
     void declare(Args& a) {
         a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
-            .option("time", time, "T", "start paused at this animation time in seconds (default: play from the start)");
+            .option("time", time, "T", "start paused at this animation time in seconds (default: play from the start)")
+            .flag("allow-empty-frames", allow_empty,
+                  "start at the --time asked for even where it lies outside the data's time span (an empty frame); "
+                  "without it such a time is an error naming the span");
         declare_size(a, size, "window and output size in pixels");
         declare_sets(a, sets);
         declare_camera(a, camera);
@@ -524,6 +527,11 @@ int run(const std::vector<std::string>& argv) {
     o.plugins.load(rt);
     o.sets = rt.user_sets(o.sets);
     const Scene scene = o.data.load(false);
+    if (o.time) {  // a start outside the data would show nothing (issue 41): the span, before a frame
+        char given[32];
+        std::snprintf(given, sizeof given, "%g", *o.time);
+        check_time_in_data(TimeRange{*o.time, *o.time}, given, scene, o.allow_empty);
+    }
     rt.gl = GlContext::adopt_current("GLFW window");
     std::fprintf(stderr, "%s\n", rt.gl->summary().c_str());
     win.open_ui();
