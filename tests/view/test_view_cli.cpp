@@ -80,7 +80,7 @@ TEST(ViewCli, ScriptedOrbitZoomPlayAndScreenshotKey) {
     test::Xvfb x;
     ASSERT_TRUE(x.ok()) << "Xvfb did not start";
     fs::path d = work();
-    const std::string scene = "variant1_lineao --phantom small --size 160x90 --time 9";
+    const std::string scene = "variant1_lineao --phantom small --size 160x90 --time 2";  // inside 0..4 s
     auto shot = [&](const std::string& name, const std::string& script, int frames) {
         std::string args = "view " + scene + " --exit-after " + std::to_string(frames) + " --screenshot " + (d / name).string();
         if (!script.empty()) {

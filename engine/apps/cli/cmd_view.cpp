@@ -316,7 +316,9 @@ public:
 private:
     static Camera start_camera(const ViewOptions& o, const Scene& scene) {
         const double t = o.time ? *o.time : scene.lines.time_min();
-        return o.camera.empty() ? frame_bounds(scene.bounds(), o.size)
+        // render's default framing (the data's projected points fill the frame), so the window
+        // shows what `pathlet render` writes
+        return o.camera.empty() ? frame_points(scene.bounds(), framing_points(scene), o.size)
                                 : CameraPath::load(o.camera).at(t, scene.bounds(), o.size);
     }
     void apply_key(const std::string& k);
