@@ -155,6 +155,19 @@ int run(const std::vector<std::string>& argv) {
     plugins.declare(a);
     data.declare(a);
     if (!a.parse(argv)) return 0;
+    // An option the chosen measure ignores is an error, not silence (issue 41).
+    const std::vector<std::string> ao_only = {"rays", "flicker-rays", "max-distance", "include-own-line",
+                                              "depth-tolerance", "images"};
+    const std::vector<std::string> transparency_only = {"focus-share", "visible", "repeat"};
+    if (!reference.empty()) {
+        a.unused_here(ao_only, "with --reference (it compares two graphs' pictures; no AO is ray-traced)");
+        a.unused_here(transparency_only, "with --reference (it compares pictures, not the lists' fragments)");
+    } else if (transparency) {
+        a.unused_here(ao_only, "with --transparency (no AO is ray-traced)");
+        a.unused_here({"out"}, "with --transparency (it writes no images)");
+    } else {
+        a.unused_here(transparency_only, "without --transparency");
+    }
     q.graph_path = resolve_graph_path(graph);
     t.graph_path = q.graph_path;
     t.sets = q.sets;
