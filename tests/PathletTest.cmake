@@ -29,7 +29,8 @@ endif()
 add_custom_target(pathlet_test_fixtures)
 
 function(pathlet_add_test name)
-  cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  # RUN_SERIAL: alone on the machine (a test that measures the machine's own load against a run)
+  cmake_parse_arguments(T "RUN_SERIAL" "" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   list(GET T_SOURCES 0 first)
@@ -48,6 +49,10 @@ function(pathlet_add_test name)
   # PROPERTIES as name/value pairs, so a list-valued ENVIRONMENT set only its first variable
   # and shifted the rest into bogus properties. `env` sets every one, for discovery and runs.
   set_target_properties(${name} PROPERTIES CROSSCOMPILING_EMULATOR "env;${PATHLET_TEST_ENV}")
-  gtest_discover_tests(${name} PROPERTIES LABELS "${T_LABELS}"
+  set(serial FALSE)
+  if(T_RUN_SERIAL)
+    set(serial TRUE)
+  endif()
+  gtest_discover_tests(${name} PROPERTIES LABELS "${T_LABELS}" RUN_SERIAL ${serial}
     DISCOVERY_TIMEOUT 60)
 endfunction()
