@@ -389,9 +389,16 @@ TEST(BenchCli, WithoutATimeBenchAndQualityPickOneInsideTheDataAndSayWhich) {
     for (const auto& p : report["runs"][0]["passes"])
         if (p["name"] == "isl") segments = p["stats"].value("segments", -1.0);
     EXPECT_GT(segments, 100) << "the frame has lines";
-    // Given, the time is the user's: t = 9 s is outside, warned about, and draws nothing.
-    CliRun late = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --time 9 --report " +
-                              (d / "late").string());
+    // Given, the time is the user's: t = 9 s is outside, an error naming the span (issue 41) ...
+    CliRun refused = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --time 9 --report " +
+                                 (d / "refused").string());
+    EXPECT_EQ(refused.code, 2) << refused.err;
+    EXPECT_NE(refused.err.find("the data's time span, 0..4 s"), std::string::npos) << refused.err;
+    if (fs::exists(d / "refused.json"))  // the report is written before the data is loaded: no run in it
+        EXPECT_TRUE(json::parse(slurp(d / "refused.json"))["runs"].empty());
+    // ... or, asked for, timed as it is: warned about, and it draws nothing.
+    CliRun late = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --time 9 "
+                              "--allow-empty-frames --report " + (d / "late").string());
     ASSERT_EQ(late.code, 0) << late.err;
     EXPECT_NE(late.err.find("time 9 s is outside"), std::string::npos) << late.err;
     EXPECT_EQ(late.err.find("note: time"), std::string::npos);
