@@ -1,5 +1,6 @@
 // The machine's own speed, timed beside a bench's runs: a fixed GL workload (a fragment
-// shader of fixed cost over a fixed 256x256 target, glFinish-bracketed), the same on every
+// shader of fixed cost: short draws each waited for, as a frame's passes are, then a long one
+// over a fixed 256x256 target, glFinish-bracketed), the same on every
 // run and every version of Pathlet. On llvmpipe it runs on the same threads and cores as the
 // frames, so other load on the machine slows it as it slows them; on a GPU it follows the
 // clock. results.json records its samples per run (before and after each, interleaved with
