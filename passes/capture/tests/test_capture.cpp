@@ -3,6 +3,7 @@
 // whole), so its files must be those of the graph's own output captures of the same resources,
 // byte for byte (test_async_output checks those against the synchronous path): float maps as
 // EXR in their own format (r16f AO, rgba16f normal+depth, the depth texture), colour as PNG.
+#include "file_bytes.hpp"
 #include "frame_capture.hpp"
 #include "renderer.hpp"
 
@@ -19,18 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A file's bytes, an EXR's "capDate" (the second it was written) blanked.
-std::string bytes_of(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::string b{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    const std::string key("capDate\0string\0", 15);
-    if (const size_t at = b.find(key); at != std::string::npos && at + key.size() + 4 <= b.size()) {
-        uint32_t n = 0;
-        std::memcpy(&n, &b[at + key.size()], 4);
-        if (at + key.size() + 4 + n <= b.size()) b.replace(at + key.size() + 4, n, n, '#');
-    }
-    return b;
-}
 
 TEST(Capture, ThePassWritesTheBytesTheGraphsOutputCapturesWrite) {
     const fs::path dir = fs::path(test_scratch_dir("pathlet_capture_pass")) / "run";
@@ -67,7 +56,7 @@ TEST(Capture, ThePassWritesTheBytesTheGraphsOutputCapturesWrite) {
             const fs::path mine = dir / "pass" / name, theirs = dir / "graph" / name;
             ASSERT_TRUE(fs::exists(mine)) << mine;
             ASSERT_TRUE(fs::exists(theirs)) << theirs;
-            EXPECT_TRUE(bytes_of(mine) == bytes_of(theirs)) << mine << " differs from " << theirs;
+            expect_same_frame_file(mine, theirs);
         }
     for (const auto& e : fs::directory_iterator(dir / "pass"))
         EXPECT_NE(e.path().filename().string()[0], '.') << "a temp file stayed: " << e.path();
