@@ -20,6 +20,10 @@
 #                                      rounds (scripts/bench-compute.sh); the picture with every
 #                                      port forced each way (pathlet imagediff); the overlay's cost
 #                                      with and without its labels
+#   transparency/                      issue 42 at BENCH_SIZE: every transparency technique against the
+#                                      exact reference (scripts/transparency-techniques.py --plots:
+#                                      speed, bytes a pixel, SSIM/PSNR/...), and the exact reference
+#                                      against depth peeling with every line (exact_vs_peel.txt)
 #   loop.txt                           the render loop's wall clock: variant 1, 1 s window, 250 frames
 #                                      of 1920x1080 with --no-images (and --video where ffmpeg is)
 #   summary.txt                        the lines a person reads first (also printed)
@@ -168,6 +172,33 @@ bench() {  # $1: name, $2: graphs, rest: extra options
 bench window "$VARIANTS"
 # Every line, and variant 1 once more unculled: the culling must never be slower than cull=false.
 bench all "$VARIANTS,variant1_lineao" --set window=0 --set "$(( $(tr -cd , <<<"$VARIANTS" | wc -c) + 2 )):cull=false"
+
+step "transparency techniques ($BENCH_SIZE) against the exact reference"
+TEXP=$ROOT/graphs/experiments/transparency_techniques.json
+if [ "$QUICK" = 1 ]; then  # the small phantom, few frames: the step's own test
+  TEXP=$WORK/transparency_quick.json
+  sed -e 's/"phantom": "study"/"phantom": "small"/' -e 's/"time": "[^"]*"/"time": "2:2.04:0.04"/' \
+    "$ROOT/graphs/experiments/transparency_techniques.json" >"$TEXP"
+fi
+# The first Python with matplotlib draws the plot (Debian's may not be first on PATH); else no plot.
+PY="" PLOTS=""
+for p in $(command -v python3) /usr/bin/python3; do
+  [ -x "$p" ] || continue; [ -n "$PY" ] || PY=$p
+  "$p" -c 'import matplotlib' 2>/dev/null && { PY=$p PLOTS=--plots; break; }
+done
+mkdir -p "$R/transparency"
+"${PY:-python3}" "$ROOT/scripts/transparency-techniques.py" "$TEXP" --pathlet "$PATHLET" --size "$BENCH_SIZE" $PLOTS \
+  --out "$R/transparency" >"$R/transparency.txt" 2>&1 || { FAILED=1; tail -5 "$R/transparency.txt" >&2; }
+say "transparency techniques at $BENCH_SIZE (x exact = speed-up over variant2_exact):"
+grep '^|' "$R/transparency.txt" | tee -a "$R/summary.txt"
+"$PATHLET" quality variant2_exact --reference variant2_depth_peel --phantom "$PHANTOM" --time "$WINDOW_TIME" \
+  --size "$BENCH_SIZE" --set window=0 --set overlay=false --out "$R/transparency/exact_vs_peel" \
+  >"$R/transparency/exact_vs_peel.txt" 2>&1 || FAILED=1
+say "exact vs depth peeling, every line: $(grep -E '^(ssim|share over)' "$R/transparency/exact_vs_peel.txt" | paste -sd, -)"
+"$PATHLET" bench variant2_exact,variant2_depth_peel --phantom "$PHANTOM" --size "$BENCH_SIZE" --time "$WINDOW_TIME" \
+  --frames "$FRAMES" --set window=0 --set overlay=false --quiet >"$R/transparency/bench_exact_peel.txt" 2>&1 || FAILED=1
+say "every line, exact / depth peeling:"
+sed -n '/^summary/,$p' "$R/transparency/bench_exact_peel.txt" | tee -a "$R/summary.txt"
 
 step "fullscreen passes: fragment against compute ($BENCH_SIZE, $ROUNDS rounds)"
 # The ports of each graph (the passes with the parameter impl), switched together.

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Speed, memory and fidelity of the transparency techniques in one table (issue 42).
 
-  scripts/transparency-techniques.py [EXPERIMENT] [--out DIR] [--plots] [--reference GRAPH]
+  scripts/transparency-techniques.py [EXPERIMENT] [--out DIR] [--plots] [--reference GRAPH] [--size WxH]
 
 EXPERIMENT (default graphs/experiments/transparency_techniques.json) names the techniques, the
 data, sizes, times and the sweep, as for `pathlet bench --experiment`. For every data set, size
@@ -16,7 +16,8 @@ and sweep value the script
      sets: SSIM (windowed), PSNR, RMSE, share over 8/255, flicker beyond the reference's own;
 and writes DIR/transparency_techniques.md and .csv (and prints the table). --plots adds
 DIR/transparency_techniques.png and .svg: speed-up over the reference against SSIM, one panel a
-sweep value, with the Pareto front (the techniques no other beats in both).
+sweep value, with the Pareto front (the techniques no other beats in both). --size replaces the
+experiment's sizes (scripts/gpu-check.sh runs it at 1920x1080).
 Exit status 2 for a bad experiment or option, 1 when a command fails.
 """
 import argparse
@@ -161,8 +162,13 @@ def main():
     ap.add_argument("--plots", action="store_true")
     ap.add_argument("--reference", default="", help="reference graph (default: the experiment's first)")
     ap.add_argument("--pathlet", default=os.path.join(ROOT, "build/bin/pathlet"))
+    ap.add_argument("--size", default="", help="WxH: measure at this size instead of the experiment's sizes")
     a = ap.parse_args()
     e = load_experiment(a.experiment)
+    if a.size:
+        if not re.fullmatch(r"[1-9]\d*x[1-9]\d*", a.size):
+            fail(f"--size '{a.size}': expected WIDTHxHEIGHT, e.g. 1920x1080", 2)
+        e["sizes"] = [a.size]
     graphs = graphs_of(e)
     reference = a.reference or graphs[0][0]
     if reference not in [g for g, _ in graphs]:

@@ -49,5 +49,15 @@ grep -q '^renderer: llvmpipe' "$R/summary.txt" || fail "the summary does not nam
 for g in variant1_lineao variant1_vao variant1_stable; do
   grep -q ' \* ' "$R/compute_$g.txt" || fail "compute_$g.txt has no fragment/compute row"
 done
+# Issue 42's table: every technique llvmpipe runs, against the exact reference, and exact against peeling.
+for t in exact WBOIT MBOIT; do
+  grep -Eq "^\| $t \| window=1 " "$R/transparency.txt" || fail "transparency.txt has no $t row for the 1 s window"
+done
+grep -Eq '^\| WBOIT \| window=0 \| [0-9]+x[0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9]+ \| 0\.[0-9]+ ' "$R/transparency.txt" ||
+  fail "the WBOIT row with every line has no speed, bytes and SSIM"
+[ -s "$R/transparency/transparency_techniques.png" ] || fail "no speed-against-SSIM plot"
+grep -Eq '^ssim (0\.99[0-9]*|1(\.0*)?)$' "$R/transparency/exact_vs_peel.txt" ||
+  fail "the exact reference does not match depth peeling: $(cat "$R/transparency/exact_vs_peel.txt")"
+grep -q 'variant2_depth_peel' "$R/transparency/bench_exact_peel.txt" || fail "depth peeling is not benched"
 grep -q '^fragment vs compute picture: max levels 0 ' "$R/summary.txt" || fail "the ports' pictures differ (compute.txt)"
 echo "gpu-check --quick: every part present; $renders renders match the goldens ($unsupported need what llvmpipe lacks)"
