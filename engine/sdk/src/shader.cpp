@@ -207,6 +207,29 @@ GLenum stage_of(const std::string& file) {
     throw ShaderError(file + ": unknown shader stage (use .vert .geom .frag .comp)");
 }
 
+// A fragment shader interlock (GL_ARB_fragment_shader_interlock) declared by one fragment
+// object of a program goes into each of its other fragment objects too (a colour hook is its own
+// object): NVIDIA's linker drops the interlock otherwise and fails on beginInvocationInterlockARB
+// ("assembly compile error ... FSIB: invalid statement"). The pass declares it once, in its shader.
+template <class Units>
+void share_interlock(Units& units) {
+    static const std::regex decl(R"(^\s*layout\s*\(\s*((pixel|sample)_interlock_(un)?ordered)\s*\)\s*in\s*;)");
+    std::string mode;
+    for (const auto& u : units) {
+        std::smatch m;
+        std::istringstream in(u.src);
+        for (std::string line; u.stage == GL_FRAGMENT_SHADER && mode.empty() && std::getline(in, line);)
+            if (std::regex_search(line, m, decl)) mode = m[1].str();
+    }
+    if (mode.empty()) return;
+    for (auto& u : units) {
+        if (u.stage != GL_FRAGMENT_SHADER || u.src.find(mode) != std::string::npos) continue;
+        // After the version line; every file below carries its own #line, so messages keep their places.
+        const size_t eol = u.src.find('\n') + 1;
+        u.src.insert(eol, "#extension GL_ARB_fragment_shader_interlock : require\nlayout(" + mode + ") in;\n");
+    }
+}
+
 }  // namespace
 
 ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, const std::vector<std::string>& dirs,
@@ -217,16 +240,26 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     auto cleanup = [&] {
         for (GLuint s : shaders) glDeleteShader(s);
     };
+    struct Unit {
+        std::string path, src;
+        std::vector<std::string> files;
+        GLenum stage;
+    };
+    std::vector<Unit> units;
     for (const auto& text : names) {
         const Entry entry = parse_entry(text);
         std::vector<std::string> paths;
         for (const auto& f : entry.files) paths.push_back(find_shader_file(f, dirs));
-        const std::string& path = paths.back();
-        std::vector<std::string> files;
-        std::string src = compose(paths, dirs, files, defines);
+        Unit u{paths.back(), "", {}, 0};
+        u.src = compose(paths, dirs, u.files, defines);
+        u.stage = stage_of(entry.stage.empty() ? u.path : "stage." + entry.stage);
+        units.push_back(std::move(u));
+    }
+    share_interlock(units);
+    for (auto& [path, src, files, stage] : units) {
         collect_uniforms(src, prog.declared_);
         prog.files_ += (prog.files_.empty() ? "" : ", ") + fs::path(path).filename().string();
-        GLuint sh = glCreateShader(stage_of(entry.stage.empty() ? path : "stage." + entry.stage));
+        GLuint sh = glCreateShader(stage);
         shaders.push_back(sh);
         const char* p = src.c_str();
         glShaderSource(sh, 1, &p, nullptr);
