@@ -5,6 +5,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -207,26 +209,50 @@ GLenum stage_of(const std::string& file) {
     throw ShaderError(file + ": unknown shader stage (use .vert .geom .frag .comp)");
 }
 
-// A fragment shader interlock (GL_ARB_fragment_shader_interlock) declared by one fragment
-// object of a program goes into each of its other fragment objects too (a colour hook is its own
-// object): NVIDIA's linker drops the interlock otherwise and fails on beginInvocationInterlockARB
-// ("assembly compile error ... FSIB: invalid statement"). The pass declares it once, in its shader.
+// A program whose fragment stage uses the fragment shader interlock (GL_ARB_fragment_shader_
+// interlock: MLAB) gets that stage as one object: the other fragment objects (a colour hook) are
+// appended to the one that declares the interlock. NVIDIA (580, H200) links an interlocked stage of
+// several objects into code without the interlock and fails ("FSIB: invalid statement"), whichever
+// objects declare it; as one object it links. The appended files keep their own source-string
+// numbers, so messages still name them; their #version and the defines are not repeated.
 template <class Units>
-void share_interlock(Units& units) {
-    static const std::regex decl(R"(^\s*layout\s*\(\s*((pixel|sample)_interlock_(un)?ordered)\s*\)\s*in\s*;)");
-    std::string mode;
-    for (const auto& u : units) {
-        std::smatch m;
-        std::istringstream in(u.src);
-        for (std::string line; u.stage == GL_FRAGMENT_SHADER && mode.empty() && std::getline(in, line);)
-            if (std::regex_search(line, m, decl)) mode = m[1].str();
+void merge_interlocked_fragments(Units& units, const std::vector<std::string>& dirs) {
+    static const std::regex decl(R"(^\s*layout\s*\(\s*(pixel|sample)_interlock_(un)?ordered\s*\)\s*in\s*;)");
+    auto declares = [](const std::string& src) {
+        std::istringstream in(src);
+        for (std::string line; std::getline(in, line);)
+            if (std::regex_search(line, decl)) return true;
+        return false;
+    };
+    size_t m = 0;
+    while (m < units.size() && !(units[m].stage == GL_FRAGMENT_SHADER && declares(units[m].src))) ++m;
+    if (m == units.size()) return;
+    for (size_t k = 0; k < units.size(); ++k) {
+        if (k == m || units[k].stage != GL_FRAGMENT_SHADER) continue;
+        const std::string more = compose(units[k].paths, dirs, units[m].files, {});
+        units[m].src += more.substr(more.find('\n') + 1);  // without its version line
+        units[m].path.append("+").append(fs::path(units[k].path).filename().string());
     }
-    if (mode.empty()) return;
-    for (auto& u : units) {
-        if (u.stage != GL_FRAGMENT_SHADER || u.src.find(mode) != std::string::npos) continue;
-        // After the version line; every file below carries its own #line, so messages keep their places.
-        const size_t eol = u.src.find('\n') + 1;
-        u.src.insert(eol, "#extension GL_ARB_fragment_shader_interlock : require\nlayout(" + mode + ") in;\n");
+    Units kept;
+    for (size_t k = 0; k < units.size(); ++k)
+        if (k == m || units[k].stage != GL_FRAGMENT_SHADER) kept.push_back(std::move(units[k]));
+    units = std::move(kept);
+}
+
+// PATHLET_SHADER_DUMP=DIR: every stage's source as the driver gets it (defines, includes and
+// #line expanded), DIR/NNNN-K-FILE, for a driver's message that names only its own lines.
+template <class Units>
+void dump_sources(const Units& units) {
+    const char* dir = std::getenv("PATHLET_SHADER_DUMP");
+    if (!dir || !*dir) return;
+    static int program = 0;
+    ++program;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    for (size_t k = 0; k < units.size(); ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "%04d-%zu-", program, k);
+        std::ofstream(fs::path(dir) / (name + fs::path(units[k].path).filename().string())) << units[k].src;
     }
 }
 
@@ -242,7 +268,7 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
     };
     struct Unit {
         std::string path, src;
-        std::vector<std::string> files;
+        std::vector<std::string> paths, files;
         GLenum stage;
     };
     std::vector<Unit> units;
@@ -250,13 +276,14 @@ ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, c
         const Entry entry = parse_entry(text);
         std::vector<std::string> paths;
         for (const auto& f : entry.files) paths.push_back(find_shader_file(f, dirs));
-        Unit u{paths.back(), "", {}, 0};
+        Unit u{paths.back(), "", paths, {}, 0};
         u.src = compose(paths, dirs, u.files, defines);
         u.stage = stage_of(entry.stage.empty() ? u.path : "stage." + entry.stage);
         units.push_back(std::move(u));
     }
-    share_interlock(units);
-    for (auto& [path, src, files, stage] : units) {
+    merge_interlocked_fragments(units, dirs);
+    dump_sources(units);
+    for (auto& [path, src, paths, files, stage] : units) {
         collect_uniforms(src, prog.declared_);
         prog.files_ += (prog.files_.empty() ? "" : ", ") + fs::path(path).filename().string();
         GLuint sh = glCreateShader(stage);
