@@ -13,6 +13,7 @@
 #include "oit_list.glsl"
 
 #define K SORT_BLOCK
+#define OIT_BLOCK K
 #define MAX_WALK 0x1000000u  // only a corrupt (cyclic) list is longer: then the pixel is counted
 
 #define STATE_FRESH 0u
@@ -21,6 +22,7 @@
 
 layout(r32ui) uniform readonly uimage2D u_heads;  // the pins, by declaration
 uniform usamplerBuffer u_nodes;                   // the pass's view of the `nodes` buffer
+#include "oit_block_sort.glsl"
 layout(rgba32f) uniform image2D u_carry;          // colour composited so far, transmittance left
 layout(rgba32ui) uniform uimage2D u_last;         // the last fragment composited: depth bits, id, colour, node
 layout(r32ui) uniform uimage2D u_state;           // STATE_*
@@ -39,11 +41,6 @@ layout(location = 0) out vec4 o_color;
 // fragments are skipped, never shaded (draw_fullscreen_on_geometry).
 layout(early_fragment_tests) in;
 
-// (d, id, c, n) comes before (d2, id2, c2, n2): the lists' order, made total by the node index.
-bool before(float d, uint id, uint c, uint n, float d2, uint id2, uint c2, uint n2) {
-    return oit_nearer(d, id, c, d2, id2, c2) || (d == d2 && id == id2 && c == c2 && n < n2);
-}
-
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     uint state = imageLoad(u_state, p).r;
@@ -54,52 +51,26 @@ void main() {
         o_color = vec4(u_background, 0.0);
         return;
     }
-    float dep[K];
-    uint lid[K], col[K], idx[K];
-    dep[K - 1] = 1.0, lid[K - 1] = 0u, col[K - 1] = 0u, idx[K - 1] = 0u;  // only the first n are read
     // The last fragment composited (the round's threshold); none before the first round.
     bool first = state == STATE_FRESH;
     vec4 carry = first ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(u_carry, p);
     uvec4 last = first ? uvec4(0u) : imageLoad(u_last, p);
-    float pd = uintBitsToFloat(last.x);
-    uint pid = last.y, pc = last.z, pn = last.w;
+    OitBlockAfter after = first ? kOitBlockStart : OitBlockAfter(true, uintBitsToFloat(last.x), last.y, last.z, last.w);
     vec3 rgb = carry.rgb;
     float t = carry.a;  // transmittance left
     uint len = 0u, rounds = 0u, visits = 0u;
     bool cut = false, finished = false;
     while (visits < uint(u_visit_budget)) {
-        int n = 0;
-        uint walked = 0u;
-        for (uint i = head; i != OIT_END;) {
-            if (++walked > MAX_WALK) {
-                cut = true;
-                break;
-            }
-            uvec4 node = texelFetch(u_nodes, int(i));
-            uint self = i;
-            i = oit_next(node);
-            float d = oit_depth(node);
-            uint id = oit_line(node), c = node.x;
-            if (!first && !before(pd, pid, pc, pn, d, id, c, self)) continue;  // composited in an earlier round
-            if (n == K && !before(d, id, c, self, dep[K - 1], lid[K - 1], col[K - 1], idx[K - 1])) continue;
-            int j = n < K ? n++ : K - 1;
-            for (; j > 0 && before(d, id, c, self, dep[j - 1], lid[j - 1], col[j - 1], idx[j - 1]); --j) {
-                dep[j] = dep[j - 1];
-                lid[j] = lid[j - 1];
-                col[j] = col[j - 1];
-                idx[j] = idx[j - 1];
-            }
-            dep[j] = d;
-            lid[j] = id;
-            col[j] = c;
-            idx[j] = self;
-        }
+        uint walked;
+        bool cut_walk;
+        int n = oit_sort_block(head, after, MAX_WALK, walked, cut_walk);
+        cut = cut || cut_walk;
         if (rounds == 0u) len = walked;
         else if (walked != len) cut = true;  // the same list walked short: a loop cut by the driver
         visits += walked;
         ++rounds;
         for (int k = 0; k < n && t >= u_min_transmittance; ++k) {
-            vec4 c = unpackUnorm4x8(col[k]);
+            vec4 c = unpackUnorm4x8(oit_block_col[k]);
             rgb += t * c.a * c.rgb;
             t *= 1.0 - c.a;
         }
@@ -107,8 +78,7 @@ void main() {
             finished = true;
             break;
         }
-        first = false;
-        pd = dep[K - 1], pid = lid[K - 1], pc = col[K - 1], pn = idx[K - 1];
+        after = oit_block_last();
     }
     // Plain reads first: the peaks only grow, so most pixels need no (contended) atomic.
     if (len > peak_nodes) atomicMax(peak_nodes, len);
@@ -117,7 +87,7 @@ void main() {
     if (cut) atomicAdd(cut_pixels, 1u);
     if (!finished && !cut) {  // the budget is spent: the next draw goes on from here
         imageStore(u_carry, p, vec4(rgb, t));
-        imageStore(u_last, p, uvec4(floatBitsToUint(pd), pid, pc, pn));
+        imageStore(u_last, p, uvec4(floatBitsToUint(after.d), after.id, after.c, after.n));
         imageStore(u_state, p, uvec4(STATE_PENDING));
         atomicAdd(pending_pixels, 1u);
         discard;
