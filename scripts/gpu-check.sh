@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One command for anyone with a GPU: what Pathlet does on it, returned as one tarball.
 #
-#   scripts/gpu-check.sh [options] OUTDIR            the check (about 2 minutes on an H200)
+#   scripts/gpu-check.sh [options] OUTDIR            the check (about 3 minutes on an H200)
 #   scripts/gpu-check.sh --make-reference DIR         the llvmpipe renders to compare with (here)
 #
 # The check writes OUTDIR/gpu-check-HOST-STAMP.tar.gz holding:
