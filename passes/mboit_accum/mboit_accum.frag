@@ -12,6 +12,9 @@ vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_
 
 uniform sampler2D u_b0;
 uniform sampler2D u_moments;
+#if MBOIT_ORDER > 2
+uniform sampler2D u_moments_high;
+#endif
 uniform float u_overestimation;
 uniform float u_bias;  // moment_bias, the paper's where the parameter is < 0
 
@@ -22,7 +25,15 @@ void main() {
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
     if (!oit_fragment_visible(c.a)) discard;
     ivec2 p = ivec2(gl_FragCoord.xy);
-    float t = mboit_transmittance(texelFetch(u_b0, p, 0).r, texelFetch(u_moments, p, 0), oit_log_depth(f), u_bias, u_overestimation);
+    float b0 = texelFetch(u_b0, p, 0).r;
+    vec4 lo = texelFetch(u_moments, p, 0);
+#if MBOIT_ORDER > 2
+    vec4 hi = texelFetch(u_moments_high, p, 0);
+    float b[8] = float[8](lo.x, lo.y, lo.z, lo.w, hi.x, hi.y, hi.z, hi.w);
+    float t = mboit_transmittance_n(b0, b, oit_log_depth(f), u_bias, u_overestimation);
+#else
+    float t = mboit_transmittance(b0, lo, oit_log_depth(f), u_bias, u_overestimation);
+#endif
     float a = mboit_alpha(c.a);
     o_accum = vec4(oit_core_ao(c.rgb, f) * a, a) * t;
 }

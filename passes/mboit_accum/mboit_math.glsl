@@ -42,4 +42,154 @@ float mboit_transmittance(float b0, vec4 b, float z0, float bias, float beta) {
     float share = beta + f01 * (m.x - z0) + f012 * (m.y - (z0 + z1) * m.x + z0 * z1);
     return clamp(exp(-b0 * share), 0.0, 1.0);
 }
+// ---- 6 and 8 power moments (MBOIT_ORDER 3 or 4: the Hankel matrix is (n+1) x (n+1)) --------
+// The same three steps for n = 3, 4, in loops (the paper's code and LineVis' port unroll each
+// order by hand: MomentMath.glsl there, computeTransmittanceAtDepthFrom6/8PowerMoments):
+//  1. biased normalised moments m_0..m_2n, H = L D L^T. In exact arithmetic the bias gives
+//     D_jj >= bias x D_jj of the uniform distribution (D_jj = min E[p^2] over monic p of
+//     degree j, and E is a mix of the data's and the uniform's). A pixel with fewer layers
+//     than n has D_jj at that floor; float32 sums then leave D_jj as rounding noise, and
+//     the roots of step 2 garbage (an earlier attempt drew white pixels where one fragment lay
+//     alone). So the order is cut at the first D_jj below kMboitKeep x that floor: such a
+//     pixel's distribution has fewer than j separable points, which the leading block holds.
+//  2. H_k c = (1, z0, .., z0^k) on the leading block; the k real roots of sum c_i x^i with z0
+//     are the canonical support (closed forms below, each root polished by Newton steps).
+//  3. the share in front of z0: the support points' weights (Christoffel numbers) times 1 in
+//     front of z0, 0 behind, beta at z0 (the paper's interpolating polynomial, evaluated
+//     without its cancellation).
+#ifdef MBOIT_ORDER
+const int kMboitN = MBOIT_ORDER;
+const float kMboitUniformD[5] = float[5](1.0, 1.0 / 3.0, 4.0 / 45.0, 4.0 / 175.0, 64.0 / 11025.0);
+// D_jj below the bias' floor is rounding noise for certain (a larger factor cut real layers
+// of the phantoms' tight bundles and made the picture worse).
+const float kMboitKeep = 1.0;
+
+// c[0] + c[1] x + .. + c[4] x^4 and its derivative (coefficients above the order are 0).
+float mboit_horner(float c[5], float x) {
+    float v = c[4];
+    for (int i = 3; i >= 0; --i) v = v * x + c[i];
+    return v;
+}
+float mboit_horner_d(float c[5], float x) {
+    float v = 4.0 * c[4];
+    for (int i = 3; i >= 1; --i) v = v * x + float(i) * c[i];
+    return v;
+}
+
+// Real roots of x^3 + a x^2 + b x + c (three by construction), Viete's trigonometric form.
+void mboit_cubic_roots(float a, float b, float c, out float r[3]) {
+    float p = b - a * a / 3.0, q = (2.0 * a * a - 9.0 * b) * a / 27.0 + c;
+    float s = sqrt(max(-p / 3.0, 0.0));
+    float arg = s > 0.0 ? clamp(-q / (2.0 * s * s * s), -1.0, 1.0) : 0.0;
+    float th = acos(arg) / 3.0;
+    const float third = 2.0943951;  // 2 pi / 3
+    for (int i = 0; i < 3; ++i) r[i] = 2.0 * s * cos(th - third * float(i)) - a / 3.0;
+}
+
+// Real roots of x^4 + a x^3 + b x^2 + c x + d (four by construction): Ferrari's factorisation
+// into two quadratics with the resolvent cubic's largest root (the well-conditioned one).
+void mboit_quartic_roots(float a, float b, float c, float d, out float r[4]) {
+    float a2 = a * a;
+    float p = b - 0.375 * a2, q = c - 0.5 * a * b + 0.125 * a2 * a;
+    float s = d - 0.25 * a * c + (b - 0.1875 * a2) * a2 / 16.0;
+    // (y^2 + p/2 + u)^2 = 2u y^2 - q y + u^2 + u p + p^2/4 - s, a square for
+    // 8u^3 + 8p u^2 + (2p^2 - 8s) u - q^2 = 0.
+    float ru[3];
+    mboit_cubic_roots(p, 0.25 * p * p - s, -0.125 * q * q, ru);
+    float u = max(max(ru[0], ru[1]), max(ru[2], 1e-12));
+    float w = sqrt(2.0 * u), h = 0.5 * p + u, g = q / (2.0 * w);
+    mboit_quadratic_roots(1.0, -w, h + g, r[0], r[1]);
+    mboit_quadratic_roots(1.0, w, h - g, r[2], r[3]);
+    for (int i = 0; i < 4; ++i) r[i] -= 0.25 * a;
+}
+
+// The transmittance at warped depth z0 from b0 and b = sum of absorbance x z^k, k = 1..2n.
+float mboit_transmittance_n(float b0, float b[8], float z0, float bias, float beta) {
+    if (b0 <= 1e-6) return 1.0;
+    float m[9];
+    m[0] = 1.0;
+    for (int k = 1; k <= 2 * kMboitN; ++k) m[k] = mix(b[k - 1] / b0, (k & 1) == 0 ? 1.0 / float(k + 1) : 0.0, bias);
+    // 1. H = L D L^T (unit lower L; column 0 of L is m_i), the order cut where D_jj is noise.
+    float L[5][5], D[5];
+    D[0] = 1.0;
+    int order = kMboitN;
+    for (int i = 0; i <= kMboitN; ++i) L[i][0] = m[i];
+    for (int j = 1; j <= kMboitN; ++j) {
+        float d = m[2 * j];
+        for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k] * D[k];
+        D[j] = d;
+        if (order == kMboitN && !(d > kMboitKeep * bias * kMboitUniformD[j])) order = j - 1;
+        for (int i = j + 1; i <= kMboitN; ++i) {
+            float e = m[i + j];
+            for (int k = 0; k < j; ++k) e -= L[i][k] * L[j][k] * D[k];
+            L[i][j] = e / d;
+        }
+    }
+    // 2. H_k c = (1, z0, .., z0^k) by forward, diagonal and backward substitution.
+    float c[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
+    float zk = 1.0;
+    for (int i = 0; i <= kMboitN; ++i) {
+        if (i > order) break;
+        float y = zk;
+        for (int k = 0; k < i; ++k) y -= L[i][k] * c[k];
+        c[i] = y;
+        zk *= z0;
+    }
+    for (int i = 0; i <= kMboitN; ++i)
+        if (i <= order) c[i] /= D[i];
+    for (int i = kMboitN; i >= 0; --i) {
+        if (i > order) continue;
+        for (int k = i + 1; k <= kMboitN; ++k)
+            if (k <= order) c[i] -= L[k][i] * c[k];
+    }
+    // The kernel polynomial's roots: the support points beside z0.
+    float z[5] = float[5](z0, 0.0, 0.0, 0.0, 0.0);
+    if (order == 1) {
+        z[1] = -c[0] / c[1];
+    } else if (order == 2) {
+        mboit_quadratic_roots(c[2], c[1], c[0], z[1], z[2]);
+    } else if (order == 3) {
+        float r[3];
+        mboit_cubic_roots(c[2] / c[3], c[1] / c[3], c[0] / c[3], r);
+        z[1] = r[0], z[2] = r[1], z[3] = r[2];
+    } else if (order == 4) {
+        float r[4];
+        mboit_quartic_roots(c[3] / c[4], c[2] / c[4], c[1] / c[4], c[0] / c[4], r);
+        z[1] = r[0], z[2] = r[1], z[3] = r[2], z[4] = r[3];
+    }
+    if (order >= 3) {  // closed forms lose digits to cancellation: two Newton steps each
+        for (int i = 1; i <= 4; ++i) {
+            if (i > order) break;
+            for (int it = 0; it < 2; ++it) {
+                float dp = mboit_horner_d(c, z[i]);
+                if (dp != 0.0) z[i] -= mboit_horner(c, z[i]) / dp;
+            }
+        }
+    }
+    // 3. The weights of the support points: Christoffel numbers 1 / K(z_i, z_i), K(x, x) =
+    // sum_j y_j^2 / D_jj with L y = (1, x, .., x^k). Positive terms, so no cancellation (the
+    // paper's expectation of the interpolating polynomial equals sum_i w_i f_i, but through
+    // monomials it cancels: divided differences of layers 1e-3 apart are 1e6).
+    float wsum = 0.0, share = 0.0;
+    for (int s = 0; s <= 4; ++s) {
+        if (s > order) break;
+        float x = z[s], xk = 1.0, y[5], k = 0.0;
+        for (int i = 0; i <= 4; ++i) {
+            if (i > order) break;
+            float v = xk;
+            for (int j = 0; j < i; ++j) v -= L[i][j] * y[j];
+            y[i] = v;
+            k += v * v / D[i];
+            xk *= x;
+        }
+        float w = 1.0 / k;
+        wsum += w;
+        share += w * (s == 0 ? beta : (x < z0 ? 1.0 : 0.0));
+    }
+    share /= wsum;  // the weights sum to 1 in exact arithmetic
+    // A reconstruction that still broke down (not seen in the tests) falls back to beta.
+    if (isnan(share) || isinf(share)) share = beta;
+    return clamp(exp(-b0 * share), 0.0, 1.0);
+}
+#endif
 #endif

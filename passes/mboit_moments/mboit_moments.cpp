@@ -2,10 +2,12 @@
 // its two additive passes. The window's fragments, drawn through the line kit with blending only,
 // add per pixel their absorbance -ln(1 - alpha) (b0, r32f) and its first four power moments of
 // the warped depth z (absorbance x z^k, k = 1..4: rgba32f). From these mboit_accum reconstructs
-// every fragment's transmittance; oit_composite takes b0 as the pixel's total. 20 bytes a pixel.
+// every fragment's transmittance; oit_composite takes b0 as the pixel's total. 20 bytes a pixel;
+// with `moments` power6 or power8 the moments z^5..z^8 go to `moments_high` (16 more).
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,20 +15,33 @@ namespace {
 
 namespace lines = pathlet::lines;
 
+// The `moments` parameter's choices: power4, power6, power8. The Hankel order n (2n moments)
+// is what both shaders compile with (MBOIT_ORDER).
+int mboit_order(const pathlet::PassContext& ctx) { return 2 + ctx.params().index("moment_form"); }
+
 class MboitMoments : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         coverage_ = ctx.connected("coverage");
-        prog_ = &lines::program(ctx, {"mboit_moments.frag"}, lines::hooks(ctx));
+        const int order = mboit_order(ctx);
+        high_ = order > 2;
+        if (high_ && !ctx.connected("moments_high"))
+            throw std::runtime_error("moment_form=" + ctx.params().s("moment_form") + " keeps " + std::to_string(2 * order) +
+                                     " moments: connect the output 'moments_high' (rgba32f) to mboit_accum's input of "
+                                     "that name (graphs/variant2_mboit8.json does; variant2_mboit keeps 4)");
+        prog_ = &lines::program(ctx, {"mboit_moments.frag"}, lines::hooks(ctx),
+                                {"MBOIT_ORDER " + std::to_string(order)});
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment counts; the depth only records coverage
         drawer_.set_blending(true);
     }
 
     void execute(pathlet::PassContext& ctx) override {
-        ctx.bind_framebuffer({"b0", "moments"}, coverage_ ? "coverage" : "");
+        // moments_high, where connected but not used (power4), is neither attached nor cleared.
+        std::vector<std::string> targets = {"b0", "moments"};
+        if (high_) targets.push_back("moments_high");
+        ctx.bind_framebuffer(targets, coverage_ ? "coverage" : "");
         const float zero[4] = {0, 0, 0, 0}, far = 1.0f;
-        glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_COLOR, 1, zero);
+        for (int i = 0; i < int(targets.size()); ++i) glClearBufferfv(GL_COLOR, i, zero);
         if (coverage_) glClearBufferfv(GL_DEPTH, 0, &far);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);  // sums over the pixel's fragments, in any order
@@ -37,7 +52,7 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    bool coverage_ = false;
+    bool coverage_ = false, high_ = false;
 };
 
 pathlet::PassTypeInfo mboit_moments_type() {
@@ -46,8 +61,14 @@ pathlet::PassTypeInfo mboit_moments_type() {
                                "absorbance and its power moments of the log-warped depth, by additive blending (20 "
                                "bytes a pixel with 4 moments)");
     lines::declare_params(b, {.color = "fade_opacity.frag"})
+        .param_enum("moment_form", "power4", {"power4", "power6", "power8"},
+                    "how many power moments of the warped depth each pixel keeps (float32): power4 (20 bytes a pixel "
+                    "with b0), power6, power8 (36, in moments_high); mboit_accum must be given the same (a graph "
+                    "variable feeds both)")
         .output_texture("b0", "r32f", "the pixel's total absorbance, sum of -ln(1 - alpha)")
         .output_texture("moments", "rgba32f", "sum of absorbance x z^k, k = 1..4 (z: log depth warped to [-1, 1])")
+        .output_texture("moments_high", "rgba32f", "power6: sum of absorbance x (z^5, z^6) in xy; power8: x z^k, "
+                        "k = 5..8; not drawn with power4", {.optional = true})
         .output_texture("coverage", "depth24", "depth < 1 where any fragment landed (the wall and oit_composite skip "
                         "the rest)", {.optional = true});
     return b.make<MboitMoments>();

@@ -10,6 +10,9 @@ vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's colour hook (color_
 
 layout(location = 0) out vec4 o_b0;
 layout(location = 1) out vec4 o_moments;
+#if MBOIT_ORDER > 2
+layout(location = 2) out vec4 o_moments_high;  // z^5..z^8 (power6: z^5, z^6)
+#endif
 
 void main() {
     LineFrag f = line_fragment();
@@ -19,4 +22,9 @@ void main() {
     float z = oit_log_depth(f), z2 = z * z, z4 = z2 * z2;
     o_b0 = vec4(a);
     o_moments = a * vec4(z, z2, z2 * z, z4);
+#if MBOIT_ORDER == 3
+    o_moments_high = a * vec4(z4 * z, z4 * z2, 0.0, 0.0);
+#elif MBOIT_ORDER == 4
+    o_moments_high = a * z4 * vec4(z, z2, z2 * z, z4);
+#endif
 }
