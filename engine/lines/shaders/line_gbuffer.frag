@@ -10,11 +10,16 @@
 #include "line_gbuffer_out.glsl"
 
 vec4 line_color_hook(vec4 rgba, LinePoint p);  // the pass's hook, linked in beside this file
+#ifdef LINE_CORE
+uniform float u_core_alpha;  // fade_core's parameter
+#endif
 
 void main() {
     LineFrag f = line_fragment();
     vec4 c = line_color_hook(vec4(f.color, 1.0), f.point);
-#ifndef LINE_OPAQUE  // the default colour hook is opaque: no screen door, no discard
+#if defined(LINE_CORE)  // fade_core: the hook's opaque core, whole (the fade a list pass applies)
+    if (c.a < u_core_alpha) discard;
+#elif !defined(LINE_OPAQUE)  // the default colour hook is opaque: no screen door, no discard
     if (c.a < line_screen_door_threshold(gl_FragCoord.xy)) discard;
 #endif
     line_gbuffer_write(f, c.rgb);

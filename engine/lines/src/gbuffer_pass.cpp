@@ -57,7 +57,9 @@ void bind_gbuffer(PassContext& ctx, const GBufferTargets& t, const ShaderProgram
 
 void GBufferPass::setup(PassContext& ctx) {
     targets_ = gbuffer_targets(ctx);
-    prog_ = &program(ctx, {"line_gbuffer.frag"}, hooks(ctx), targets_.defines);
+    std::vector<std::string> defines = targets_.defines;
+    for (auto& d : fragment_defines(ctx)) defines.push_back(std::move(d));
+    prog_ = &program(ctx, {"line_gbuffer.frag"}, hooks(ctx), defines);
 }
 
 void GBufferPass::execute(PassContext& ctx) {

@@ -116,3 +116,43 @@ TEST(EveryTechnique, TheOpaqueCoresAoCombinesWithEachBlendTechnique) {
         EXPECT_LT(after, before - 0.01) << "the core's AO darkens";
     }
 }
+
+TEST(EveryTechnique, TheHookDecidesTheOpaqueCoreToo) {
+    // fade_core keeps where the graph's colour hook reaches core_alpha (0.5): with a hook that
+    // makes every line 0.3 opaque there is no core, so LineAO has nothing to darken and AO
+    // strength 2 leaves each _ao picture as strength 0 does. (With the end fade as the core,
+    // whatever the hook, the middles of the pathlets were core and darkened.)
+    const std::string hook = test_scratch_dir("pathlet_every_technique") + "/faint_fade.glsl";
+    std::ofstream(hook) << "vec4 line_color_hook(vec4 rgba, LinePoint p) { return vec4(rgba.rgb, 0.3 * rgba.a); }\n";
+    Runtime& rt = test_runtime();
+    size_t graphs = 0;
+    for (const ShippedGraph& g : shipped_graphs()) {
+        const std::string& n = g.name;
+        if (n.rfind("variant2_", 0) != 0 || n.size() < 3 || n.compare(n.size() - 3, 3, "_ao") != 0) continue;
+        SCOPED_TRACE(n);
+        if (const std::string why = g.unsupported_here(); !why.empty()) {
+            std::printf("skipped: %s\n", why.c_str());
+            continue;
+        }
+        RenderOptions opt;
+        opt.graph_path = g.path;
+        opt.size = {160, 120};
+        opt.time.start = 6.0;
+        opt.sets = rt.user_sets({"line_width=1.2", "window=3", "overlay=false", "wall=false", "color_hook=" + hook,
+                                 "strength=0"});
+        const Frame unlit = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        opt.sets.back() = "strength=2";
+        const Frame lit = render_frame(rt, helix_bundle_scene(), opt, {"final"});
+        size_t differ = 0, covered = 0;
+        const Image& a = unlit["final"];
+        for (size_t i = 0; i < a.pixels.size(); ++i) differ += std::abs(a.pixels[i] - lit["final"].pixels[i]) > 1.5f / 255;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x) covered += a.at(x, y, 0) + a.at(x, y, 1) + a.at(x, y, 2) < 2.9f;
+        std::printf("%-24s faint hook: %zu of %zu values differ between AO strength 0 and 2 (%zu covered pixels)\n",
+                    n.c_str(), differ, a.pixels.size(), covered);
+        EXPECT_GT(covered, 500u) << "the faint lines are drawn";
+        EXPECT_EQ(differ, 0u) << "a core the hook does not make opaque must not exist";
+        ++graphs;
+    }
+    EXPECT_GE(graphs, 3u) << "variant2_oit_ao, wboit_ao, mboit_ao at least";
+}

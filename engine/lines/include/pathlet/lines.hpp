@@ -27,7 +27,7 @@
 // through line_hook_buffer.glsl (a uint array; e.g. shaders/oo_opacity.glsl).
 // The kit derives the quad, tube normal and tube depth from the hooked width. Its own fades are
 // hook files: fade_opacity.frag (variant 2's end fade), fade_width.geom (variant 3's taper),
-// fade_core.frag, all on line_fade.glsl's parameters. A pass with resources of its own is a
+// on line_fade.glsl's parameters; fade_core keeps where a colour hook's opacity reaches core_alpha. A pass with resources of its own is a
 // small C++ class on GBufferPass or Drawer (see plugins/example_fade/).
 #pragma once
 
@@ -260,6 +260,8 @@ protected:
     // parameters reach their uniforms by themselves). A name the program does not declare
     // throws (a typo must not silently switch a fade off).
     virtual void set_uniforms(PassContext& ctx, const ShaderProgram& prog) {}
+    // Defines of line_gbuffer.frag beside the targets' (LINE_CORE: fade_core's threshold).
+    virtual std::vector<std::string> fragment_defines(const PassContext& ctx) const { return {}; }
 
     ShaderProgram* prog_ = nullptr;
     Drawer drawer_;
