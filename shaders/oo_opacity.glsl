@@ -1,7 +1,7 @@
 // The opacity that opacity optimization found (opacity_blend's `opacity`), as a colour or width
 // hook reads it: the pass's `hook_buffer` must be connected to that buffer (the line kit refuses
-// a hook that reads the block without it). Included by optimized_fade.glsl and
-// optimized_core.glsl; include it in a hook of your own to combine it with other rules.
+// a hook that reads the block without it). Included by optimized_fade.glsl (fill_list's and
+// fade_core's hook in variant 4); include it in a hook of your own to combine it with other rules.
 #ifndef PATHLET_OO_OPACITY_GLSL
 #define PATHLET_OO_OPACITY_GLSL
 

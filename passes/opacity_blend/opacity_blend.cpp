@@ -106,7 +106,7 @@ pathlet::PassTypeInfo opacity_blend_type() {
         .input_buffer("targets", "opacity_resolve's least opacity per segment")
         .output_buffer("opacity",
                        "the segmentation's header and line table, then each segment's opacity (float): the buffer a "
-                       "line pass's hook_buffer takes for optimized_fade.glsl / optimized_core.glsl",
+                       "line pass's hook_buffer takes for optimized_fade.glsl",
                        {.bytes = 16})
         .internal_buffer("state", "per segment its opacity and the generation of the segmentation it belongs to",
                          {.bytes = 16}, {.persistent = true})

@@ -1,6 +1,6 @@
 // The line kit's end fade: a factor that rises from the pathlet's tail and falls to its head,
 // shared by every fade strategy (fade_opacity.frag fades the opacity with it, fade_width.geom
-// tapers the width, fade_core.frag keeps the opaque core). Include it from a hook file: its
+// tapers the width; fade_core keeps where a colour hook reaches core_alpha). Include it from a hook file: its
 // parameters (below, @param) become parameters of every pass whose hook includes it.
 #ifndef PATHLET_LINE_FADE_GLSL
 #define PATHLET_LINE_FADE_GLSL
