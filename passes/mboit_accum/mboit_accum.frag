@@ -29,11 +29,11 @@ void main() {
     vec4 lo = texelFetch(u_moments, p, 0);
 #if MBOIT_ORDER > 2
     vec4 hi = texelFetch(u_moments_high, p, 0);
-    float b[8] = float[8](lo.x, lo.y, lo.z, lo.w, hi.x, hi.y, hi.z, hi.w);
-    float t = mboit_transmittance_n(b0, b, oit_log_depth(f), u_bias, u_overestimation);
 #else
-    float t = mboit_transmittance(b0, lo, oit_log_depth(f), u_bias, u_overestimation);
+    vec4 hi = vec4(0.0);  // not read with 4 moments
 #endif
+    float b[8] = float[8](lo.x, lo.y, lo.z, lo.w, hi.x, hi.y, hi.z, hi.w);
+    float t = mboit_transmittance(b0, b, oit_log_depth(f), u_bias, u_overestimation);
     float a = mboit_alpha(c.a);
     o_accum = vec4(oit_core_ao(c.rgb, f) * a, a) * t;
 }

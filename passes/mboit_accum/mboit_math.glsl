@@ -1,15 +1,27 @@
-// The transmittance in front of depth z0 from a pixel's 4 power moments (Münstermann et al.
-// 2018, after Peters & Klein's moment shadow maps), derived here:
+// The transmittance in front of warped depth z0 from a pixel's 4, 6 or 8 power moments
+// (MBOIT_ORDER n = 2, 3, 4: 2n moments; Münstermann et al. 2018, after Peters & Klein's moment
+// shadow maps), derived here:
 //  1. the normalised moments m_k = b_k / b0 (m_0 = 1) are biased towards those of the uniform
-//     distribution on [-1, 1] (0, 1/3, 0, 1/5), so the Hankel matrix H_ij = m_(i+j),
-//     i, j = 0..2, is positive definite;
-//  2. H c = (1, z0, z0^2), solved as H = L D L^T with a unit lower L; the two roots of
-//     c0 + c1 x + c2 x^2 with z0 are the support of the distribution with these moments that
-//     has a point at z0 (its canonical representation);
-//  3. the quadratic p that is beta (the overestimation) at z0, 1 at a support point in front
-//     of z0 and 0 behind interpolates the share of absorbance in front of z0; its expectation,
-//     from the Newton form of p, needs only m_1 and m_2.
-// The transmittance is exp(-b0 x that share).
+//     distribution on [-1, 1] (0, 1/3, 0, 1/5, ..), so the Hankel matrix H_ij = m_(i+j),
+//     i, j = 0..n, is positive definite; H = L D L^T. In exact arithmetic the bias gives
+//     D_jj >= bias x D_jj of the uniform distribution (D_jj = min E[p^2] over monic p of
+//     degree j, and E is a mix of the data's and the uniform's). A pixel with fewer layers
+//     than n has D_jj at that floor, and float32 sums leave rounding noise there: the roots
+//     of step 2 are then garbage (lone lines dropped out in dashes with 4 moments on the CFD
+//     aorta; an earlier 6/8-moment attempt drew white single-fragment pixels). So the order
+//     is cut at the first D_jj below that floor: such a pixel's distribution has fewer than
+//     j separable points, which the leading block holds.
+//  2. H_k c = (1, z0, .., z0^k) on the leading block; the k real roots of sum c_i x^i with z0
+//     are the support of the distribution with these moments that has a point at z0 (its
+//     canonical representation): closed forms below, roots of cubics and quartics polished
+//     by Newton steps.
+//  3. the share of the absorbance in front of z0: the support points' weights (Christoffel
+//     numbers 1 / K(z_i, z_i)) times 1 in front of z0, 0 behind and beta (the overestimation)
+//     at z0. The paper takes the expectation of the polynomial through these values from its
+//     monomial coefficients, which cancels (divided differences of layers 1e-3 apart are
+//     1e6); the weights are sums of positive terms.
+// The transmittance is exp(-b0 x that share). The paper's code (and LineVis' GLSL port,
+// MomentMath.glsl) unrolls each order by hand; here one loop serves all three.
 #ifndef PATHLET_MBOIT_MATH_GLSL
 #define PATHLET_MBOIT_MATH_GLSL
 
@@ -22,42 +34,9 @@ void mboit_quadratic_roots(float a2, float a1, float a0, out float r0, out float
     r1 = t != 0.0 ? a0 / t : r0;
 }
 
-// Transmittance at warped depth z0 of a pixel with total absorbance b0 and moments b = sum of
-// absorbance x (z, z^2, z^3, z^4).
-float mboit_transmittance(float b0, vec4 b, float z0, float bias, float beta) {
-    if (b0 <= 1e-6) return 1.0;
-    vec4 m = mix(b / b0, vec4(0.0, 1.0 / 3.0, 0.0, 1.0 / 5.0), bias);
-    float d1 = m.y - m.x * m.x;
-    float l21 = (m.z - m.x * m.y) / d1;
-    float d2 = (m.w - m.y * m.y) - l21 * l21 * d1;
-    float y1 = (z0 - m.x) / d1;
-    float c2 = (z0 * z0 - m.y - l21 * (z0 - m.x)) / d2;
-    float c1 = y1 - l21 * c2;
-    float c0 = 1.0 - m.x * c1 - m.y * c2;
-    float z1, z2;
-    mboit_quadratic_roots(c2, c1, c0, z1, z2);
-    float f1 = z1 < z0 ? 1.0 : 0.0, f2 = z2 < z0 ? 1.0 : 0.0;
-    float f01 = (f1 - beta) / (z1 - z0), f12 = (f2 - f1) / (z2 - z1);
-    float f012 = (f12 - f01) / (z2 - z0);
-    float share = beta + f01 * (m.x - z0) + f012 * (m.y - (z0 + z1) * m.x + z0 * z1);
-    return clamp(exp(-b0 * share), 0.0, 1.0);
-}
-// ---- 6 and 8 power moments (MBOIT_ORDER 3 or 4: the Hankel matrix is (n+1) x (n+1)) --------
-// The same three steps for n = 3, 4, in loops (the paper's code and LineVis' port unroll each
-// order by hand: MomentMath.glsl there, computeTransmittanceAtDepthFrom6/8PowerMoments):
-//  1. biased normalised moments m_0..m_2n, H = L D L^T. In exact arithmetic the bias gives
-//     D_jj >= bias x D_jj of the uniform distribution (D_jj = min E[p^2] over monic p of
-//     degree j, and E is a mix of the data's and the uniform's). A pixel with fewer layers
-//     than n has D_jj at that floor; float32 sums then leave D_jj as rounding noise, and
-//     the roots of step 2 garbage (an earlier attempt drew white pixels where one fragment lay
-//     alone). So the order is cut at the first D_jj below kMboitKeep x that floor: such a
-//     pixel's distribution has fewer than j separable points, which the leading block holds.
-//  2. H_k c = (1, z0, .., z0^k) on the leading block; the k real roots of sum c_i x^i with z0
-//     are the canonical support (closed forms below, each root polished by Newton steps).
-//  3. the share in front of z0: the support points' weights (Christoffel numbers) times 1 in
-//     front of z0, 0 behind, beta at z0 (the paper's interpolating polynomial, evaluated
-//     without its cancellation).
-#ifdef MBOIT_ORDER
+#ifndef MBOIT_ORDER
+#define MBOIT_ORDER 2
+#endif
 const int kMboitN = MBOIT_ORDER;
 const float kMboitUniformD[5] = float[5](1.0, 1.0 / 3.0, 4.0 / 45.0, 4.0 / 175.0, 64.0 / 11025.0);
 // D_jj below the bias' floor is rounding noise for certain (a larger factor cut real layers
@@ -104,7 +83,7 @@ void mboit_quartic_roots(float a, float b, float c, float d, out float r[4]) {
 }
 
 // The transmittance at warped depth z0 from b0 and b = sum of absorbance x z^k, k = 1..2n.
-float mboit_transmittance_n(float b0, float b[8], float z0, float bias, float beta) {
+float mboit_transmittance(float b0, float b[8], float z0, float bias, float beta) {
     if (b0 <= 1e-6) return 1.0;
     float m[9];
     m[0] = 1.0;
@@ -166,10 +145,8 @@ float mboit_transmittance_n(float b0, float b[8], float z0, float bias, float be
             }
         }
     }
-    // 3. The weights of the support points: Christoffel numbers 1 / K(z_i, z_i), K(x, x) =
-    // sum_j y_j^2 / D_jj with L y = (1, x, .., x^k). Positive terms, so no cancellation (the
-    // paper's expectation of the interpolating polynomial equals sum_i w_i f_i, but through
-    // monomials it cancels: divided differences of layers 1e-3 apart are 1e6).
+    // 3. The support points' weights 1 / K(z_i, z_i), K(x, x) = sum_j y_j^2 / D_jj with
+    // L y = (1, x, .., x^k).
     float wsum = 0.0, share = 0.0;
     for (int s = 0; s <= 4; ++s) {
         if (s > order) break;
@@ -191,5 +168,4 @@ float mboit_transmittance_n(float b0, float b[8], float z0, float bias, float be
     if (isnan(share) || isinf(share)) share = beta;
     return clamp(exp(-b0 * share), 0.0, 1.0);
 }
-#endif
 #endif

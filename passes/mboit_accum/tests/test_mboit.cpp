@@ -1,7 +1,7 @@
 // Moment-based OIT (mboit_moments -> mboit_accum -> oit_composite) on real GL (llvmpipe): the
 // picture against a CPU MBOIT in double precision of the very fragments fill_list stores for
 // the same lines (a 3x3 solve with pivoting and Lagrange weights, not the shader's L D L^T and
-// Newton form), single-layer pixels against the exact resolve, layered ones nearer it than an
+// Christoffel weights), single-layer pixels against the exact resolve, layered ones nearer it than an
 // order-blind blend of the same sums, and a golden of graphs/variant2_mboit.json. With 6 and 8
 // moments (moment_form power6, power8): the same against a CPU reference in double that reaches
 // the shader's result by other means (roots by bisection between the derivative's roots,
@@ -12,6 +12,7 @@
 #include "frame_capture.hpp"
 #include "golden.hpp"
 #include "oit_lists.hpp"
+#include "straight_lines.hpp"
 
 #include <gtest/gtest.h>
 
@@ -288,7 +289,7 @@ TEST_P(MboitForms, OneFragmentIsExactAndFewLayersAreNearTheExactResolve) {
     ASSERT_GT(few, 50u);
     std::printf("%d moments, pixels of 2-3 layers: mean error %.2f/255 (4 moments: %.2f/255)\n", 2 * n,
                 err / (3.0 * few) * 255, err4 / (3.0 * few) * 255);
-    EXPECT_LE(err, 1.02 * err4) << "more moments must not blur a few layers more";
+    EXPECT_LT(err, err4) << "more moments must resolve a few layers better";
     EXPECT_LT(err / (3.0 * few), 4.0 / 255);
 }
 
@@ -297,7 +298,7 @@ INSTANTIATE_TEST_SUITE_P(Moments, MboitForms, ::testing::Values(3, 4),
 
 TEST(Mboit, MoreMomentsAreNearerTheExactReferenceOnThePhantom) {
     // The small phantom, every line whole, against variant2_exact: RMSE over the pixels either
-    // covers falls (or stays) from 4 to 6 to 8 moments.
+    // covers falls from 4 to 6 to 8 moments (0.0129, 0.0118, 0.0104 when written).
     auto render_graph = [](const std::string& graph, std::vector<std::string> sets) {
         RenderOptions opt;
         opt.graph_path = kSrc + "/graphs/" + graph + ".json";
@@ -331,8 +332,55 @@ TEST(Mboit, MoreMomentsAreNearerTheExactReferenceOnThePhantom) {
     }
     std::printf("small phantom, every line, RMSE against variant2_exact: power4 %.4f, power6 %.4f, power8 %.4f\n",
                 rmse[0], rmse[1], rmse[2]);
-    EXPECT_LE(rmse[1], rmse[0]);
-    EXPECT_LE(rmse[2], rmse[1]);
+    EXPECT_LT(rmse[1], 0.97 * rmse[0]);
+    EXPECT_LT(rmse[2], 0.97 * rmse[1]);
+}
+
+TEST(Mboit, LoneLinesAtEveryDepthKeepTheirColour) {
+    // Lines side by side, each alone in its pixels, from the near to the far end of the depth
+    // range (warped z from -1 to 1): each form gives the exact picture there. With 4 moments the
+    // paper's expectation through monomials dropped such lines in dashes on the CFD aorta; a
+    // pivot at the bias' floor turned into noise gives garbage support points.
+    std::vector<StraightLine> lines;
+    for (int i = 0; i < 13; ++i)
+        lines.push_back({.from = {0.0f, 1.5f * float(i), -24.0f + 4.0f * float(i)},
+                         .to = {10.0f, 1.5f * float(i), -24.0f + 4.0f * float(i)}, .speed = 1.0f + 0.2f * float(i)});
+    const Scene scene = straight_lines_scene(lines);
+    const std::string cam = write_camera_down_z(test_scratch_dir("pathlet_mboit") + "/cam.json", {5, 9, 0}, 60, 30);
+    auto render_graph = [&](const std::string& graph, std::vector<std::string> sets) {
+        RenderOptions opt;
+        opt.graph_path = kSrc + "/graphs/" + graph + ".json";
+        sets.insert(sets.end(), {"window=0", "overlay=false", "wall=false", "lod=0", "color_hook=uniform_fade.glsl",
+                                 "tail_fade=0", "head_fade=0", "line_width=0.8", "speed_min=1", "speed_max=3.4"});
+        opt.sets = sets;
+        opt.size = {320, 180};
+        opt.time.start = 5.0;
+        opt.camera_path = cam;
+        return render_frame(test_runtime(), scene, opt, {"final"})["final"];
+    };
+    const Image exact = render_graph("variant2_exact", {});
+    const std::pair<std::string, std::string> forms[] = {
+        {"variant2_mboit", ""}, {"variant2_mboit8", "moments=power6"}, {"variant2_mboit8", "moments=power8"}};
+    for (const auto& [graph, set] : forms) {
+        const Image im = render_graph(graph, set.empty() ? std::vector<std::string>{} : std::vector<std::string>{set});
+        size_t covered = 0, off = 0;
+        double worst = 0.0;
+        for (int y = 0; y < exact.height; ++y)
+            for (int x = 0; x < exact.width; ++x) {
+                double d = 0.0;
+                bool any = false;
+                for (int k = 0; k < 3; ++k) {
+                    any = any || exact.at(x, y, k) < 1.0f;
+                    d = std::max(d, std::abs(double(im.at(x, y, k)) - exact.at(x, y, k)));
+                }
+                covered += any;
+                off += d > 2.0 / 255;
+                worst = std::max(worst, d);
+            }
+        EXPECT_GT(covered, 1500u);
+        EXPECT_EQ(off, 0u) << graph << " " << set << ": pixels more than 2/255 from the exact picture (largest "
+                           << worst * 255 << "/255)";
+    }
 }
 
 TEST(Mboit, HighMomentsNeedTheirTarget) {
