@@ -173,6 +173,10 @@ def main():
         if not re.fullmatch(r"[1-9]\d*x[1-9]\d*", a.size):
             fail(f"--size '{a.size}': expected WIDTHxHEIGHT, e.g. 1920x1080", 2)
         e["sizes"] = [a.size]
+    for ds in e.get("data", []):  # data files are named relative to the experiment file, as bench reads them
+        for k in ("file", "mesh"):
+            if k in ds and not os.path.isabs(ds[k]):
+                ds[k] = os.path.join(os.path.dirname(os.path.abspath(a.experiment)), ds[k])
     graphs = graphs_of(e)
     reference = a.reference or graphs[0][0]
     if reference not in [g for g, _ in graphs]:
@@ -190,10 +194,6 @@ def main():
         fail(f"the reference {reference} does not run on this driver")
     bench_exp = dict(e, graphs=[{"graph": g, "label": l} for g, l in kept])
     bench_exp.pop("$schema", None)
-    for ds in bench_exp.get("data", []):
-        for k in ("file", "mesh"):
-            if k in ds and not os.path.isabs(ds[k]):
-                ds[k] = os.path.join(os.path.dirname(os.path.abspath(a.experiment)), ds[k])
     exp_path = os.path.join(a.out, "experiment.json")
     with open(exp_path, "w", encoding="utf-8") as f:
         json.dump(bench_exp, f, indent=2)
