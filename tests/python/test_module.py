@@ -259,10 +259,11 @@ def test_quality_against_a_reference_is_the_commands(pathlet, cli, scene, tmp_pa
     assert f"ssim {q['ssim']:.5f}" in out and f"rmse {q['rmse']:.5f}" in out and f"psnr {q['psnr']:.2f}" in out
     assert f"share over 8/255 {100 * q['share_over']:.4f} %" in out
     assert f"flicker vs reference {q['flicker_excess']:.5f}" in out
-    assert q["frames"] == 3 and len(q["per_frame"]) == 3 and 0 < q["ssim"] < 0.99
-    assert len(q["images"]) == 5 and all(os.path.exists(f) for f in q["images"])
+    assert f"flip {q['flip']:.5f} (mean LDR-FLIP over the covered pixels; all pixels {q['flip_all']:.5f};" in out
+    assert q["frames"] == 3 and len(q["per_frame"]) == 3 and 0 < q["ssim"] < 0.99 and 0 < q["flip"] < 1
+    assert len(q["images"]) == 8 and all(os.path.exists(f) for f in q["images"])  # diff and flip per frame
     same = pathlet.quality(g, scene, time="2:2.08:0.04", size=(96, 54), reference=g)
-    assert same["ssim"] == 1.0 and same["rmse"] == 0.0 and same["flicker_excess"] == 0.0
+    assert same["ssim"] == 1.0 and same["rmse"] == 0.0 and same["flicker_excess"] == 0.0 and same["flip"] == 0.0
 
 
 def test_render_keeps_the_commands_limits(pathlet, scene):

@@ -1,7 +1,8 @@
 // `pathlet quality GRAPH --reference REFGRAPH` end to end (issue 42), through the command on
 // llvmpipe: the exact reference against depth peeling agrees (ssim 1 within float noise, no
 // pixel over 8/255), the study's variant 2 (AO multiplied in, 32 fragments) does not, --out
-// gets one difference image per frame and the last pictures, and bad use is an error naming it.
+// gets one difference image and one FLIP image per frame and the last pictures, WBOIT has a FLIP
+// against the exact reference, and bad use is an error naming it.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -16,7 +17,7 @@ namespace {
 struct CliRun {
     int rc = -1;
     std::string out;
-    std::map<std::string, double> v;  // "ssim", "psnr", "rmse", "share", "flicker"
+    std::map<std::string, double> v;  // "ssim", "psnr", "rmse", "share", "flip", "flip_all", "flicker"
 };
 
 CliRun quality(const std::string& args) {
@@ -31,8 +32,11 @@ CliRun quality(const std::string& args) {
                                                                              {"psnr", "psnr "},
                                                                              {"rmse", "rmse "},
                                                                              {"share", "share over 8/255 "},
+                                                                             {"flip", "flip "},
                                                                              {"flicker", "flicker vs reference "}})
             if (s.rfind(prefix, 0) == 0) r.v[key] = std::stod(s.substr(prefix.size()));
+        if (const size_t all = s.find("all pixels "); s.rfind("flip ", 0) == 0 && all != std::string::npos)
+            r.v["flip_all"] = std::stod(s.substr(all + 11));
     }
     const int st = p ? pclose(p) : -1;
     r.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
@@ -48,14 +52,17 @@ TEST(QualityReference, ExactAgainstDepthPeelingAgreesAndWritesTheDifferenceImage
     fs::remove_all(out);
     const CliRun r = quality("variant2_exact --reference variant2_depth_peel" + kCommon + " --out " + out.string());
     ASSERT_EQ(r.rc, 0) << r.out;
-    ASSERT_EQ(r.v.size(), 5u) << r.out;
+    ASSERT_EQ(r.v.size(), 7u) << r.out;
     EXPECT_GT(r.v.at("ssim"), 0.9999) << r.out;
     EXPECT_LT(r.v.at("rmse"), 1.0 / 255.0) << r.out;
     EXPECT_EQ(r.v.at("share"), 0.0) << r.out;
+    EXPECT_LT(r.v.at("flip"), 0.01) << r.out;
     EXPECT_LT(r.v.at("flicker"), 0.5 / 255.0) << r.out;
     EXPECT_NE(r.out.find("variant2_exact vs variant2_depth_peel: 3 frames 160x90"), std::string::npos) << r.out;
     for (const char* f : {"variant2_exact_vs_variant2_depth_peel_diff_00000.png",
-                          "variant2_exact_vs_variant2_depth_peel_diff_00002.png", "variant2_exact_last.png",
+                          "variant2_exact_vs_variant2_depth_peel_diff_00002.png",
+                          "variant2_exact_vs_variant2_depth_peel_flip_00000.png",
+                          "variant2_exact_vs_variant2_depth_peel_flip_00002.png", "variant2_exact_last.png",
                           "variant2_depth_peel_last.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f << "\n" << r.out;
     EXPECT_FALSE(fs::exists(out / "variant2_exact_vs_variant2_depth_peel_diff_00003.png"));
@@ -70,13 +77,36 @@ TEST(QualityReference, TheStudysVariant2IsFarFromTheReference) {
     EXPECT_GT(r.v.at("rmse"), 2.0 / 255.0) << r.out;
     EXPECT_LT(r.v.at("psnr"), 45.0) << r.out;
     EXPECT_GT(r.v.at("share"), 0.5) << r.out;  // percent
+    EXPECT_GT(r.v.at("flip"), 0.02) << r.out;
     EXPECT_GT(r.v.at("flicker"), 0.0) << r.out;
+}
+
+// WBOIT blends without order: FLIP sees it, over the covered pixels more than over the whole
+// frame (the background agrees), and less from further away (more pixels per degree).
+TEST(QualityReference, WboitHasAFlipAgainstTheExactReference) {
+    const CliRun r = quality("variant2_wboit --reference variant2_exact" + kCommon);
+    ASSERT_EQ(r.rc, 0) << r.out;
+    ASSERT_TRUE(r.v.count("flip") && r.v.count("flip_all")) << r.out;
+    EXPECT_GT(r.v.at("flip"), 0.005) << r.out;
+    EXPECT_LT(r.v.at("flip"), 0.5) << r.out;
+    EXPECT_GT(r.v.at("flip"), 2.0 * r.v.at("flip_all")) << r.out;
+    EXPECT_NE(r.out.find("67.0 pixels per degree"), std::string::npos) << r.out;
+    const CliRun far = quality("variant2_wboit --reference variant2_exact --ppd 200" + kCommon);
+    ASSERT_EQ(far.rc, 0) << far.out;
+    EXPECT_LT(far.v.at("flip"), r.v.at("flip")) << far.out;
+    EXPECT_NE(far.out.find("200.0 pixels per degree"), std::string::npos) << far.out;
 }
 
 TEST(QualityReference, BadUseIsAnErrorNamingIt) {
     CliRun r = quality("variant2_exact --reference no_such_graph" + kCommon);
     EXPECT_EQ(r.rc, 2) << r.out;
     EXPECT_NE(r.out.find("no_such_graph"), std::string::npos) << r.out;
+    r = quality("variant2_exact --reference variant2_depth_peel --ppd 0" + kCommon);
+    EXPECT_EQ(r.rc, 2) << r.out;
+    EXPECT_NE(r.out.find("--ppd"), std::string::npos) << r.out;
+    r = quality("variant2_exact --ppd 60 --transparency" + kCommon);
+    EXPECT_EQ(r.rc, 2) << r.out;
+    EXPECT_NE(r.out.find("ppd"), std::string::npos) << r.out;
     r = quality("variant2_exact --reference variant2_depth_peel --transparency" + kCommon);
     EXPECT_EQ(r.rc, 2) << r.out;
     EXPECT_NE(r.out.find("--reference"), std::string::npos) << r.out;

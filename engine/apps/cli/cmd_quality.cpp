@@ -15,6 +15,7 @@
 #include "transparency.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace pathlet::cli {
@@ -62,10 +63,13 @@ int run_experiment_table(Runtime& rt, const std::string& file, quality::Transpar
 
 // --reference: fidelity of GRAPH against REFGRAPH (issue 42).
 int run_reference(const quality::QualityOptions& q, const std::string& reference, bool out_given, bool transparency,
-                  const std::string& experiment, bool allow_empty, PluginOptions& plugins, SceneOptions& data) {
+                  const std::string& experiment, bool allow_empty, double ppd, PluginOptions& plugins,
+                  SceneOptions& data) {
     if (transparency || !experiment.empty()) throw UsageError("--reference measures fidelity; not with --transparency or --experiment");
     if (q.time && q.time->times().empty()) throw UsageError("--time gives no frame");
+    if (!(ppd > 0.0) || !std::isfinite(ppd)) throw UsageError("--ppd must be a positive number of pixels per degree");
     quality::ReferenceOptions o;
+    o.ppd = ppd;
     o.graph_path = q.graph_path;
     o.reference_path = reference;
     o.size = q.size;
@@ -85,6 +89,8 @@ int run_reference(const quality::QualityOptions& q, const std::string& reference
     std::printf("psnr %.2f\n", m.psnr);
     std::printf("rmse %.5f\n", m.rmse);
     std::printf("share over 8/255 %.4f %%\n", 100.0 * m.share_over);
+    std::printf("flip %.5f (mean LDR-FLIP over the covered pixels; all pixels %.5f; %.1f pixels per degree)\n", m.flip,
+                m.flip_all, o.ppd);
     if (r.flicker)
         std::printf("flicker vs reference %.5f (own change %.5f, the reference's %.5f)\n", r.flicker->excess,
                     r.flicker->test_change, r.flicker->reference_change);
@@ -118,6 +124,7 @@ int run(const std::vector<std::string>& argv) {
     bool images = false, transparency = false;
     quality::TransparencyOptions t;
     std::string experiment, reference;
+    double ppd = quality::kFlipPpd;
     a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
         .option("flicker-rays", q.flicker_rays, "N",
                 "ray-traced AO of every frame, for the flicker against the reference's own change: rays per pixel "
@@ -140,8 +147,11 @@ int run(const std::vector<std::string>& argv) {
         .option("reference", reference, "REFGRAPH",
                 "fidelity instead: GRAPH and REFGRAPH rendered over the same times, size and camera (--set for "
                 "both), compared over the pixels either covers: windowed SSIM (Wang et al. 2004, 11x11 Gaussian "
-                "on luminance), PSNR, RMSE, the share of pixels more than 8/255 apart and the flicker beyond the "
-                "reference's own; --out DIR gets the difference images")
+                "on luminance), PSNR, RMSE, the share of pixels more than 8/255 apart, LDR-FLIP (Andersson et al. "
+                "2020) and the flicker beyond the reference's own; --out DIR gets the difference and FLIP images")
+        .option("ppd", ppd, "PPD",
+                "--reference: FLIP's observer in pixels per degree (default 67: 0.7 m from a 0.7 m wide monitor "
+                "of 3840 pixels)")
         .example("pathlet quality variant2_exact --reference variant2_depth_peel --set window=0 --size 1280x720",
                  "the exact reference against depth peeling")
         .example("pathlet quality variant4_opacity --transparency --size 1280x720", "what the optimized opacity shows")
@@ -163,9 +173,11 @@ int run(const std::vector<std::string>& argv) {
         a.unused_here(ao_only, "with --reference (it compares two graphs' pictures; no AO is ray-traced)");
         a.unused_here(transparency_only, "with --reference (it compares pictures, not the lists' fragments)");
     } else if (transparency) {
+        a.unused_here({"ppd"}, "without --reference (FLIP compares two graphs' pictures)");
         a.unused_here(ao_only, "with --transparency (no AO is ray-traced)");
         a.unused_here({"out"}, "with --transparency (it writes no images)");
     } else {
+        a.unused_here({"ppd"}, "without --reference (FLIP compares two graphs' pictures)");
         a.unused_here(transparency_only, "without --transparency");
     }
     q.graph_path = resolve_graph_path(graph);
@@ -175,7 +187,7 @@ int run(const std::vector<std::string>& argv) {
     t.time = q.time;
     const bool out_given = std::find(argv.begin(), argv.end(), "--out") != argv.end();
     if (!reference.empty()) return run_reference(q, resolve_graph_path(reference), out_given, transparency,
-                                                 experiment, allow_empty, plugins, data);
+                                                 experiment, allow_empty, ppd, plugins, data);
     try {
         if (transparency) quality::check_transparency_options(t);
         else quality::check_quality_options(q);

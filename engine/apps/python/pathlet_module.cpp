@@ -513,6 +513,7 @@ py::dict run_reference(const std::string& graph, const std::vector<std::string>&
     auto metrics = [](const quality::ImageMetrics& m) {
         py::dict d;
         d["ssim"] = m.ssim, d["psnr"] = m.psnr, d["rmse"] = m.rmse, d["share_over"] = m.share_over;
+        d["flip"] = m.flip, d["flip_all"] = m.flip_all;
         d["pixels"] = m.pixels;
         return d;
     };

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace pathlet::quality {
 namespace {
@@ -84,12 +85,17 @@ std::vector<float> ssim_map(const std::vector<float>& a, const std::vector<float
     return out;
 }
 
-ImageMetrics compare_images(const Image& test, const Image& ref, const std::vector<uint8_t>& mask) {
+ImageMetrics compare_images(const Image& test, const Image& ref, const std::vector<uint8_t>& mask, double ppd,
+                            std::vector<float>* flip_out) {
     require_same(test, ref, mask.size());
     ImageMetrics m;
     const std::vector<float> s = ssim_map(luminance(test), luminance(ref), test.width, test.height);
+    std::vector<float> flip = flip_map(test, ref, ppd);
+    m.all_pixels = mask.size();
     for (size_t i = 0; i < mask.size(); ++i) {
+        m.sum_flip_all += flip[i];
         if (!mask[i]) continue;
+        m.sum_flip += flip[i];
         ++m.pixels;
         float worst = 0;
         for (int c = 0; c < 3; ++c) {
@@ -104,6 +110,7 @@ ImageMetrics compare_images(const Image& test, const Image& ref, const std::vect
             ++m.ssim_windows;
         }
     }
+    if (flip_out) *flip_out = std::move(flip);
     return pool({m});
 }
 
@@ -115,12 +122,17 @@ ImageMetrics pool(const std::vector<ImageMetrics>& frames) {
         p.sum_ssim += f.sum_ssim;
         p.sum_sq += f.sum_sq;
         p.over += f.over;
+        p.sum_flip += f.sum_flip;
+        p.sum_flip_all += f.sum_flip_all;
+        p.all_pixels += f.all_pixels;
     }
     p.ssim = p.ssim_windows ? p.sum_ssim / double(p.ssim_windows) : 1.0;
     const double mse = p.pixels ? p.sum_sq / (3.0 * double(p.pixels)) : 0.0;
     p.rmse = std::sqrt(mse);
     p.psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
     p.share_over = p.pixels ? double(p.over) / double(p.pixels) : 0.0;
+    p.flip = p.pixels ? p.sum_flip / double(p.pixels) : 0.0;
+    p.flip_all = p.all_pixels ? p.sum_flip_all / double(p.all_pixels) : 0.0;
     return p;
 }
 

@@ -9,7 +9,9 @@
 //   rmse   root mean square difference over the mask's pixels and the R, G, B channels (0..1)
 //   psnr   10 log10(1 / mse) in dB (infinite for identical pictures)
 //   share_over  share of the mask's pixels with a channel more than 8/255 apart
+//   flip   mean LDR-FLIP (flip.hpp, Andersson et al. 2020) over the mask; flip_all over every pixel
 // Luminance: Rec. 709 weights on the stored (sRGB-encoded) values, what a viewer sees.
+#include "flip.hpp"
 #include "image_io.hpp"
 
 #include <cstddef>
@@ -24,6 +26,9 @@ struct ImageMetrics {
     double ssim = 1.0, rmse = 0.0, psnr = 0.0, share_over = 0.0;
     double sum_ssim = 0.0, sum_sq = 0.0;  // sums behind ssim and rmse, for pooling frames
     size_t over = 0;
+    double flip = 0.0, flip_all = 0.0;    // mean LDR-FLIP over the mask, over every pixel
+    double sum_flip = 0.0, sum_flip_all = 0.0;
+    size_t all_pixels = 0;                // in the image
 };
 
 constexpr int kSsimWindow = 11;        // Wang et al.: 11 x 11
@@ -36,9 +41,11 @@ std::vector<float> luminance(const Image& img);
 // The SSIM map: one value per pixel whose window lies inside the image (others NaN).
 std::vector<float> ssim_map(const std::vector<float>& a, const std::vector<float>& b, int width, int height);
 // Every measure of `test` against `reference` over `mask` (1 = measured; same size as the
-// images). Throws std::invalid_argument when the sizes differ.
-ImageMetrics compare_images(const Image& test, const Image& reference, const std::vector<uint8_t>& mask);
-// Frames pooled: ssim over all windows, rmse over all pixels, share over all pixels.
+// images), FLIP for a viewer at `ppd` pixels per degree (its map to `flip_out` if given).
+// Throws std::invalid_argument when the sizes differ.
+ImageMetrics compare_images(const Image& test, const Image& reference, const std::vector<uint8_t>& mask,
+                            double ppd = kFlipPpd, std::vector<float>* flip_out = nullptr);
+// Frames pooled: ssim over all windows, rmse, share and flip over all pixels.
 ImageMetrics pool(const std::vector<ImageMetrics>& frames);
 
 // Flicker against the reference: pictures change from frame to frame as the pathlets advance,

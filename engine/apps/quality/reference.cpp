@@ -106,10 +106,12 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
     r.first_time = times.front();
     r.last_time = times[std::min(times.size(), r.frames) - 1];
     std::vector<std::vector<uint8_t>> either(r.frames);
+    std::vector<std::vector<float>> flips(o.out_dir.empty() ? 0 : r.frames);  // kept for --out only
     for (size_t k = 0; k < r.frames; ++k) {
         either[k] = a.covered[k];
         for (size_t i = 0; i < either[k].size(); ++i) either[k][i] |= b.covered[k][i];
-        r.per_frame.push_back(compare_images(a.pictures[k], b.pictures[k], either[k]));
+        r.per_frame.push_back(
+            compare_images(a.pictures[k], b.pictures[k], either[k], o.ppd, flips.empty() ? nullptr : &flips[k]));
     }
     r.metrics = pool(r.per_frame);
     if (r.frames >= 2) r.flicker = flicker_vs_reference(a.pictures, b.pictures, either);
@@ -121,6 +123,9 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
             std::snprintf(name, sizeof name, "_diff_%05zu.png", k);
             r.images.push_back(stem + name);
             write_image(r.images.back(), difference_image(a.pictures[k], b.pictures[k], either[k]));
+            std::snprintf(name, sizeof name, "_flip_%05zu.png", k);
+            r.images.push_back(stem + name);
+            write_image(r.images.back(), flip_image(flips[k], a.pictures[k].width, a.pictures[k].height, &either[k]));
         }
         r.images.push_back(o.out_dir + "/" + r.graph + "_last.png");
         write_image(r.images.back(), a.pictures.back());

@@ -24,7 +24,8 @@ struct ReferenceOptions {
     std::vector<std::string> reference_sets; // the reference's own, after `sets` (Python's Graph.set)
     glm::ivec2 size{320, 180};
     std::optional<TimeRange> time;  // none: default_quality_time(scene), said on stderr
-    std::string out_dir;            // non-empty: difference images (and the last pair) written here
+    std::string out_dir;            // non-empty: difference and FLIP images (and the last pair) written here
+    double ppd = kFlipPpd;          // FLIP's observer: pixels per degree of visual angle
 };
 
 struct ReferenceResult {

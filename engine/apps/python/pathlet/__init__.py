@@ -444,10 +444,11 @@ def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=
     reference=GRAPH: ``pathlet quality GRAPH --reference REF`` instead (issue 42): both rendered
     over the same times, size and camera (graph's sets for both, the reference's own sets after
     them), compared over the pixels either covers: ssim (windowed, Wang et al. 2004, 11x11
-    Gaussian on luminance), psnr, rmse, share_over (fraction more than 8/255 apart), pixels,
+    Gaussian on luminance), psnr, rmse, share_over (fraction more than 8/255 apart), flip (mean
+    LDR-FLIP, Andersson et al. 2020, at 67 pixels per degree; flip_all over every pixel), pixels,
     flicker_excess (frame-to-frame change beyond the reference's own; flicker and
     reference_change are the two changes), per_frame (the measures per frame); out=DIR writes
-    the difference images there (their paths in images)."""
+    the difference and FLIP images there (their paths in images)."""
     g = _graph(graph)
     if reference is not None:
         r = _graph(reference)
