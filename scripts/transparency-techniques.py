@@ -13,8 +13,9 @@ and sweep value the script
      the run reported (the lists' node_memory_mib);
   3. measures every technique against the reference (default: the experiment's first graph,
      variant2_exact) with `pathlet quality GRAPH --reference REF` over the same times, size and
-     sets: SSIM (windowed), PSNR, RMSE, share over 8/255, flicker beyond the reference's own;
-and writes DIR/transparency_techniques.md and .csv (and prints the table). --plots adds
+     sets: SSIM (windowed), PSNR, RMSE, share over 8/255, flicker beyond the reference's own, FLIP;
+and writes DIR/transparency_techniques.md and .csv (and prints the table), and each technique's
+error images (pathlet quality --out) under DIR/errors/GRAPH-SWEEP-SIZE/. --plots adds
 DIR/transparency_techniques.png and .svg: speed-up over the reference against SSIM, one panel a
 sweep value, with the Pareto front (the techniques no other beats in both). --size replaces the
 experiment's sizes (scripts/gpu-check.sh runs it at 1920x1080).
@@ -33,7 +34,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 COMMON = {"oit_color", "composed", "final"}  # the picture's tail every variant2_* graph has
 METRICS = [("ssim", r"^ssim ([-\d.eE+naninf]+)"), ("psnr", r"^psnr ([-\d.eE+naninf]+)"),
            ("rmse", r"^rmse ([-\d.eE+naninf]+)"), ("share_over_pct", r"^share over 8/255 ([-\d.eE+naninf]+) %"),
-           ("flicker", r"^flicker vs reference ([-\d.eE+naninf]+|n/a)")]
+           ("flicker", r"^flicker vs reference ([-\d.eE+naninf]+|n/a)"), ("flip", r"^flip ([-\d.eE+naninf]+)")]
 FAILED = []  # graphs that broke (not a missing extension): the table is written, the exit status is 1
 MIB = {"B": 1.0 / 1048576, "KiB": 1.0 / 1024, "MiB": 1.0, "GiB": 1024.0}
 
@@ -111,8 +112,8 @@ def plan_bytes_per_pixel(pathlet, graph, size, sets):
     return total * 1048576 / (w * h), buffers
 
 
-def quality(pathlet, graph, reference, ds, time, size, sets):
-    cmd = [pathlet, "quality", graph, "--reference", reference, "--size", size] + data_args(ds)
+def quality(pathlet, graph, reference, ds, time, size, sets, out):
+    cmd = [pathlet, "quality", graph, "--reference", reference, "--size", size, "--out", out] + data_args(ds)
     cmd += (["--time", time] if time else []) + sum((["--set", s] for s in sets), [])
     out = run(cmd)
     r = {}
@@ -232,18 +233,19 @@ def main():
                "bytes_per_pixel": bpp,
                "passes": "; ".join(f"{p['name']} {p['gpu_ms']['median']:.1f}" for p in r["passes"])}
         if graph == reference:
-            row.update(ssim=1.0, psnr=float("inf"), rmse=0.0, share_over_pct=0.0, flicker=0.0)
+            row.update(ssim=1.0, psnr=float("inf"), rmse=0.0, share_over_pct=0.0, flicker=0.0, flip=0.0)
         else:
             print(f"measuring {label_of[graph]} {row['sweep']} {size} against {reference}", file=sys.stderr)
-            row.update(quality(a.pathlet, graph, reference, ds_args, time, size, sets))
+            err_dir = os.path.join(a.out, "errors", "-".join(re.sub(r"[^\w.=-]", "_", v) for v in (graph, sv or "all", size)))
+            row.update(quality(a.pathlet, graph, reference, ds_args, time, size, sets, err_dir))
         rows.append(row)
 
     cols = ["technique", "sweep", "size", "frame_ms", "speedup", "bytes_per_pixel", "ssim", "psnr", "rmse",
-            "share_over_pct", "flicker", "passes"]
+            "share_over_pct", "flicker", "flip", "passes"]
     head = ["technique", sweep or "setting", "size", "frame ms (median)", f"x {label_of.get(reference, reference)}",
-            "bytes/px", "SSIM", "PSNR dB", "RMSE", "> 8/255 %", "flicker", "passes (median ms)"]
+            "bytes/px", "SSIM", "PSNR dB", "RMSE", "> 8/255 %", "flicker", "FLIP", "passes (median ms)"]
     fmt = {"frame_ms": "{:.1f}", "speedup": "{:.2f}", "bytes_per_pixel": "{:.0f}", "ssim": "{:.4f}", "psnr": "{:.1f}",
-           "rmse": "{:.4f}", "share_over_pct": "{:.2f}", "flicker": "{:.4f}"}
+           "rmse": "{:.4f}", "share_over_pct": "{:.2f}", "flicker": "{:.4f}", "flip": "{:.4f}"}
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
         lines.append("| " + " | ".join(fmt.get(c, "{}").format(r[c]) for c in cols) + " |")
