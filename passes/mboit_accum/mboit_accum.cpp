@@ -21,21 +21,24 @@ namespace lines = pathlet::lines;
 // mboit_math.glsl sums positive Christoffel weights instead, and 5e-7 was nearer the exact
 // picture on both phantoms (README: study phantom, every line: SSIM 0.873 at 5e-7 with 8
 // moments against 0.854 at the paper's 5e-5).
-constexpr float kDefaultBias = 5e-7f;
+// The trigonometric forms: the paper's for float32, 4e-7, 8e-7 and 1.5e-6 for 2, 3, 4 moments.
+constexpr float kDefaultBias[6] = {5e-7f, 5e-7f, 5e-7f, 4e-7f, 8e-7f, 1.5e-6f};
 
 class MboitAccum : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         form_ = ctx.params().index("moment_form");
-        const int order = 2 + form_;
+        const bool trig = form_ >= 3;
+        const int order = trig ? form_ - 1 : 2 + form_;
         // The form is the writer's too (the graph variable `moments` feeds both); the high
         // moments must then be wired (with power4 a connected moments_high is left unread).
         if (order > 2 && !ctx.connected("moments_high"))
             throw std::runtime_error("moment_form=" + ctx.params().s("moment_form") +
-                                     " reads 'moments_high' (z^5..z^8): connect it to mboit_moments' output of that "
+                                     " reads 'moments_high' (more than 4 floats): connect it to mboit_moments' output of that "
                                      "name, with the same moment_form there (graphs/variant2_mboit8.json does)");
         std::vector<std::string> defines = lines::core_ao_defines(ctx);
         defines.push_back("MBOIT_ORDER " + std::to_string(order));
+        if (trig) defines.push_back("MBOIT_TRIG");
         prog_ = &lines::program(ctx, {"mboit_accum.frag"}, lines::hooks(ctx), defines);
         drawer_.set_depth_func(GL_ALWAYS);
         drawer_.set_blending(true);
@@ -49,7 +52,7 @@ public:
         glBlendFunc(GL_ONE, GL_ONE);
         prog_->use();
         const float bias = ctx.params().f("moment_bias");
-        prog_->set("u_bias", bias < 0.0f ? kDefaultBias : bias);
+        prog_->set("u_bias", bias < 0.0f ? kDefaultBias[form_] : bias);
         drawer_.draw(ctx, *prog_);
     }
 
@@ -70,11 +73,12 @@ pathlet::PassTypeInfo mboit_accum_type() {
                      "underestimates occlusion, 1 overestimates it)")
         .param_float("moment_bias", -1.0, -1.0, 0.5,
                      "how far the normalised moments are moved towards the uniform distribution's before the "
-                     "reconstruction; < 0: 5e-7 (the paper's for 4 float32 moments; for 6 and 8 it gives 5e-6 and "
-                     "5e-5, which this reconstruction does not need: README)")
-        .param_enum("moment_form", "power4", {"power4", "power6", "power8"},
+                     "reconstruction; < 0: 5e-7 for the power forms (the paper's for 4 float32 moments; for 6 and 8 "
+                     "it gives 5e-6 and 5e-5, which this reconstruction does not need: README), the paper's 4e-7, "
+                     "8e-7, 1.5e-6 for trig2..trig4")
+        .param_enum("moment_form", "power4", {"power4", "power6", "power8", "trig2", "trig3", "trig4"},
                     "the moments mboit_moments keeps (give both passes the same, e.g. through a graph variable): "
-                    "power4, or power6 and power8 with 'moments_high' connected")
+                    "power4, trig2, or power6, power8, trig3, trig4 with 'moments_high' connected")
         .input_texture("b0", "r32f", "the total absorbance (mboit_moments)")
         .input_texture("moments", "rgba32f", "moments 1..4 (mboit_moments)")
         .input_texture("moments_high", "rgba32f", "moments 5..8 (mboit_moments' with power6, power8)", {.optional = true})

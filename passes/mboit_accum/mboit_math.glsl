@@ -83,7 +83,109 @@ void mboit_quartic_roots(float a, float b, float c, float d, out float r[4]) {
 }
 
 // The transmittance at warped depth z0 from b0 and b = sum of absorbance x z^k, k = 1..2n.
-#if MBOIT_ORDER == 2
+#ifdef MBOIT_TRIG
+// Trigonometric moments (moment_form trig2..trig4, MBOIT_ORDER n = 2..4 complex moments
+// t_k = E[e^(i k phi)], mboit_common.glsl's mboit_circle), the same three steps on the circle:
+// the moments are biased towards the uniform distribution's (t_k = 0), the Toeplitz matrix
+// T_jk = t_(j-k) is factored as L D L^H (its pivots are at least bias: the order is cut below),
+// T c = (1, x0, .., x0^k) for x0 = e^(i phi0), the roots of sum conj(c_j) x^j (on the unit circle)
+// by Durand-Kerner iterations from points spread on the circle, and the share in front of x0
+// from their Christoffel weights 1 / sum |y_j|^2 / D_jj, L y = (1, x, ..). A root's weight
+// counts 1 when its angle is below phi0, and rises from 0 to 1 across the wrapping zone
+// (between the farthest depth and, wrapping round, the nearest). The paper's code (LineVis:
+// TrigonometricMomentMath.glsl) uses closed-form complex root solvers and the interpolating
+// polynomial; the result is the same in exact arithmetic.
+vec2 mboit_cdiv(vec2 a, vec2 b) { return vec2(a.x * b.x + a.y * b.y, a.y * b.x - a.x * b.y) / dot(b, b); }
+vec2 mboit_conj(vec2 a) { return vec2(a.x, -a.y); }
+
+float mboit_transmittance(float b0, float b[8], float z0, float bias, float beta) {
+    if (b0 <= 1e-6) return 1.0;
+    const int N = kMboitN;
+    vec2 t[N + 1];
+    t[0] = vec2(1.0, 0.0);
+    for (int k = 1; k <= N; ++k) t[k] = vec2(b[2 * k - 2], b[2 * k - 1]) / b0 * (1.0 - bias);
+    // 1. T = L D L^H, T_ij = t_(i-j) below the diagonal, the order cut where D_jj <= bias.
+    vec2 L[N + 1][N + 1];
+    float D[N + 1], inv_d[N + 1];
+    for (int i = 0; i <= N; ++i)  // every entry written (a compiler warning is a GL error here)
+        for (int j = 0; j <= N; ++j) L[i][j] = vec2(0.0);
+    int order = N;
+    for (int j = 0; j <= N; ++j) {
+        float d = 1.0;
+        for (int k = 0; k < j; ++k) d -= dot(L[j][k], L[j][k]) * D[k];
+        if (j > 0 && order == N && !(d > kMboitKeep * bias)) order = j - 1;
+        D[j] = j <= order ? d : 1.0;
+        inv_d[j] = j <= order ? 1.0 / d : 0.0;
+        for (int i = j + 1; i <= N; ++i) {
+            vec2 e = t[i - j];
+            for (int k = 0; k < j; ++k) e -= mboit_cmul(L[i][k], mboit_conj(L[j][k])) * D[k];
+            L[i][j] = e / D[j];
+        }
+    }
+    if (order == 0) return clamp(exp(-b0 * beta), 0.0, 1.0);  // one depth
+    // 2. T_k c = v(x0), then the kernel polynomial q(x) = sum conj(c_j) x^j.
+    float phi0 = mboit_phase(z0);
+    vec2 x0 = vec2(cos(phi0), sin(phi0));
+    vec2 c[N + 1], xk = vec2(1.0, 0.0);
+    for (int i = 0; i <= N; ++i) c[i] = vec2(0.0);
+    for (int i = 0; i <= N; ++i) {
+        vec2 y = xk;
+        for (int k = 0; k < i; ++k) y -= mboit_cmul(L[i][k], c[k]);
+        c[i] = y;
+        xk = mboit_cmul(xk, x0);
+    }
+    for (int i = 0; i <= N; ++i) c[i] *= inv_d[i];
+    for (int i = N; i >= 0; --i)
+        for (int k = i + 1; k <= N; ++k) c[i] -= mboit_cmul(mboit_conj(L[k][i]), c[k]);
+    // Monic q: a_j = conj(c_j) / conj(c_order); roots by Durand-Kerner from spread points.
+    vec2 a[N + 1], lead = mboit_conj(c[0]);
+    for (int j = 0; j <= N; ++j) {
+        if (j == order) lead = mboit_conj(c[j]);
+    }
+    for (int j = 0; j <= N; ++j) a[j] = j <= order ? mboit_cdiv(mboit_conj(c[j]), lead) : vec2(0.0);
+    vec2 r[N];
+    for (int i = 0; i < N; ++i) {
+        float ang = 0.4 + 6.2831853 * float(i) / float(max(order, 1));
+        r[i] = vec2(cos(ang), sin(ang));
+    }
+    for (int it = 0; it < 16; ++it) {
+        for (int i = 0; i < N; ++i) {
+            vec2 v = vec2(1.0, 0.0);  // q(r_i), Horner from the monic top
+            for (int j = N - 1; j >= 0; --j)
+                if (j < order) v = mboit_cmul(v, r[i]) + a[j];
+            vec2 den = vec2(1.0, 0.0);
+            for (int j = 0; j < N; ++j)
+                if (j != i && j < order) den = mboit_cmul(den, r[i] - r[j]);
+            if (i < order && dot(den, den) > 0.0) r[i] -= mboit_cdiv(v, den);
+        }
+    }
+    // 3. The weights: x0 with beta, each root 1 in front, 0 behind, a ramp across the zone.
+    float wsum = 0.0, share = 0.0;
+    for (int s = 0; s <= N; ++s) {
+        vec2 x = s == 0 ? x0 : normalize(r[max(s - 1, 0)]);
+        vec2 y[N + 1], xp = vec2(1.0, 0.0);
+        for (int i = 0; i <= N; ++i) y[i] = vec2(0.0);
+        float k = 0.0;
+        for (int i = 0; i <= N; ++i) {
+            vec2 v = xp;
+            for (int j = 0; j < i; ++j) v -= mboit_cmul(L[i][j], y[j]);
+            y[i] = v;
+            k += dot(v, v) * inv_d[i];
+            xp = mboit_cmul(xp, x);
+        }
+        float ang = atan(x.y, x.x);
+        ang = ang < 0.0 ? ang + 6.2831853 : ang;
+        float f = s == 0 ? beta
+                         : (ang < phi0 ? 1.0 : 0.0) + clamp((ang - 2.0 * kMboitPhaseScale) / kMboitWrapZone, 0.0, 1.0);
+        float w = s <= order ? 1.0 / k : 0.0;
+        wsum += w;
+        share += w * f;
+    }
+    share /= wsum;
+    if (isnan(share) || isinf(share)) share = beta;
+    return clamp(exp(-b0 * share), 0.0, 1.0);
+}
+#elif MBOIT_ORDER == 2
 // 4 moments, the steps below written out for n = 2 (the general loop's arrays made llvmpipe's
 // accum 2.5x as slow, 49 against 19 ms on the small phantom). Their results agree.
 float mboit_weight2(float x, float m1, float m2, float l21, float inv_d1, float inv_d2) {
@@ -130,7 +232,8 @@ float mboit_transmittance(float b0, float b[8], float z0, float bias, float beta
     float L[N + 1][N + 1], D[N + 1], inv_d[N + 1];
     D[0] = inv_d[0] = 1.0;
     int order = N;
-    for (int i = 0; i <= N; ++i) L[i][0] = m[i];
+    for (int i = 0; i <= N; ++i)  // every entry written (a compiler warning is a GL error here)
+        for (int j = 0; j <= N; ++j) L[i][j] = j == 0 ? m[i] : 0.0;
     for (int j = 1; j <= N; ++j) {
         float d = m[2 * j];
         for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k] * D[k];
@@ -183,6 +286,7 @@ float mboit_transmittance(float b0, float b[8], float z0, float bias, float beta
     float wsum = 0.0, share = 0.0;
     for (int s = 0; s <= N; ++s) {
         float x = z[s], xk = 1.0, y[N + 1], k = 0.0;
+        for (int i = 0; i <= N; ++i) y[i] = 0.0;
         for (int i = 0; i <= N; ++i) {
             float v = xk;
             for (int j = 0; j < i; ++j) v -= L[i][j] * y[j];

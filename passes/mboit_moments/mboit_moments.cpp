@@ -15,9 +15,19 @@ namespace {
 
 namespace lines = pathlet::lines;
 
-// The `moments` parameter's choices: power4, power6, power8. The Hankel order n (2n moments)
-// is what both shaders compile with (MBOIT_ORDER).
-int mboit_order(const pathlet::PassContext& ctx) { return 2 + ctx.params().index("moment_form"); }
+// moment_form's choices: power4, power6, power8 (2n power moments) and trig2, trig3, trig4 (n
+// trigonometric ones). n, the Hankel or Toeplitz order, is what both shaders compile with
+// (MBOIT_ORDER, with MBOIT_TRIG for the trigonometric forms); n > 2 needs moments_high.
+const std::vector<std::string> kForms = {"power4", "power6", "power8", "trig2", "trig3", "trig4"};
+int mboit_order(const pathlet::PassContext& ctx) {
+    const int i = ctx.params().index("moment_form");
+    return i < 3 ? 2 + i : i - 1;
+}
+std::vector<std::string> mboit_defines(const pathlet::PassContext& ctx) {
+    std::vector<std::string> d = {"MBOIT_ORDER " + std::to_string(mboit_order(ctx))};
+    if (ctx.params().index("moment_form") >= 3) d.push_back("MBOIT_TRIG");
+    return d;
+}
 
 class MboitMoments : public pathlet::Pass {
 public:
@@ -26,11 +36,11 @@ public:
         const int order = mboit_order(ctx);
         high_ = order > 2;
         if (high_ && !ctx.connected("moments_high"))
-            throw std::runtime_error("moment_form=" + ctx.params().s("moment_form") + " keeps " + std::to_string(2 * order) +
-                                     " moments: connect the output 'moments_high' (rgba32f) to mboit_accum's input of "
-                                     "that name (graphs/variant2_mboit8.json does; variant2_mboit keeps 4)");
-        prog_ = &lines::program(ctx, {"mboit_moments.frag"}, lines::hooks(ctx),
-                                {"MBOIT_ORDER " + std::to_string(order)});
+            throw std::runtime_error("moment_form=" + ctx.params().s("moment_form") +
+                                     " keeps more than 4 floats of moments: connect the output 'moments_high' (rgba32f) "
+                                     "to mboit_accum's input of that name (graphs/variant2_mboit8.json does; "
+                                     "variant2_mboit keeps 4: power4, trig2)");
+        prog_ = &lines::program(ctx, {"mboit_moments.frag"}, lines::hooks(ctx), mboit_defines(ctx));
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment counts; the depth only records coverage
         drawer_.set_blending(true);
     }
@@ -61,14 +71,15 @@ pathlet::PassTypeInfo mboit_moments_type() {
                                "absorbance and its power moments of the log-warped depth, by additive blending (20 "
                                "bytes a pixel with 4 moments)");
     lines::declare_params(b, {.color = "fade_opacity.frag"})
-        .param_enum("moment_form", "power4", {"power4", "power6", "power8"},
-                    "how many power moments of the warped depth each pixel keeps (float32): power4 (20 bytes a pixel "
-                    "with b0), power6, power8 (36, in moments_high); mboit_accum must be given the same (a graph "
-                    "variable feeds both)")
+        .param_enum("moment_form", "power4", kForms,
+                    "the moments of the warped depth each pixel keeps (float32): power4 (20 bytes a pixel with b0), "
+                    "power6, power8 (36, in moments_high); trig2 (20), trig3, trig4 (36): 2..4 trigonometric moments "
+                    "of the depth as an angle; mboit_accum must be given the same (a graph variable feeds both)")
         .output_texture("b0", "r32f", "the pixel's total absorbance, sum of -ln(1 - alpha)")
-        .output_texture("moments", "rgba32f", "sum of absorbance x z^k, k = 1..4 (z: log depth warped to [-1, 1])")
+        .output_texture("moments", "rgba32f", "sum of absorbance x z^k, k = 1..4 (z: log depth warped to [-1, 1]); "
+                        "trig: x e^(i k phi), k = 1, 2 (phi: z as an angle, mboit_common.glsl)")
         .output_texture("moments_high", "rgba32f", "power6: sum of absorbance x (z^5, z^6) in xy; power8: x z^k, "
-                        "k = 5..8; not drawn with power4", {.optional = true})
+                        "k = 5..8; trig3, trig4: x e^(i k phi), k = 3 (xy), 4 (zw); not drawn with power4, trig2", {.optional = true})
         .output_texture("coverage", "depth24", "depth < 1 where any fragment landed (the wall and oit_composite skip "
                         "the rest)", {.optional = true});
     return b.make<MboitMoments>();

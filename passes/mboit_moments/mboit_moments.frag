@@ -19,12 +19,23 @@ void main() {
     vec4 c = oit_fragment_rgba(f, line_color_hook(vec4(f.color, 1.0), f.point));
     if (!oit_fragment_visible(c.a)) discard;  // invisible: no contribution (and no coverage)
     float a = mboit_absorbance_of(c.a);
-    float z = oit_log_depth(f), z2 = z * z, z4 = z2 * z2;
     o_b0 = vec4(a);
+#ifdef MBOIT_TRIG
+    // e^(i k phi), k = 1..n: the trigonometric moments
+    vec2 c1 = mboit_circle(oit_log_depth(f)), c2 = mboit_cmul(c1, c1);
+    o_moments = a * vec4(c1, c2);
+#if MBOIT_ORDER == 3
+    o_moments_high = a * vec4(mboit_cmul(c2, c1), 0.0, 0.0);
+#elif MBOIT_ORDER == 4
+    o_moments_high = a * vec4(mboit_cmul(c2, c1), mboit_cmul(c2, c2));
+#endif
+#else
+    float z = oit_log_depth(f), z2 = z * z, z4 = z2 * z2;
     o_moments = a * vec4(z, z2, z2 * z, z4);
 #if MBOIT_ORDER == 3
     o_moments_high = a * vec4(z4 * z, z4 * z2, 0.0, 0.0);
 #elif MBOIT_ORDER == 4
     o_moments_high = a * z4 * vec4(z, z2, z2 * z, z4);
+#endif
 #endif
 }

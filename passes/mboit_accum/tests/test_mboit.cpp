@@ -3,10 +3,11 @@
 // the same lines (a 3x3 solve with pivoting and Lagrange weights, not the shader's L D L^T and
 // Christoffel weights), single-layer pixels against the exact resolve, layered ones nearer it than an
 // order-blind blend of the same sums, and a golden of graphs/variant2_mboit.json. With 6 and 8
-// moments (moment_form power6, power8): the same against a CPU reference in double that reaches
-// the shader's result by other means (roots by bisection between the derivative's roots,
-// weights from the Vandermonde system), single fragments exact, and on the small phantom more
-// moments at least as near variant2_exact.
+// power moments and 2, 3, 4 trigonometric ones (moment_form power6, power8, trig2..trig4): the
+// same against a CPU reference in double that reaches the shader's result by other means (roots
+// by bisection between the derivative's roots, or as minima of |q| on the unit circle; weights
+// from the Vandermonde system), single fragments and lone lines exact, and on the small phantom
+// more power moments nearer variant2_exact.
 #include "camera.hpp"
 #include "executor.hpp"
 #include "frame_capture.hpp"
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <complex>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -211,17 +213,140 @@ std::vector<Fragment> fragments(const Lists& l, int x, int y) {
     return frags;
 }
 
-// The pixel MBOIT with `n` moment pairs (2: the 4-moment reconstruction) gives these fragments.
-glm::dvec3 cpu_mboit(const std::vector<Fragment>& frags, int n) {
+using cplx = std::complex<double>;
+
+// The warped depth as an angle, mboit_common.glsl's mboit_phase (wrapping zone 0.1 pi).
+const double kWrap = 0.1 * M_PI, kScale = M_PI - 0.5 * kWrap;
+double phase(double z) { return (z + 1.0) * kScale; }
+
+// x = A^-1 y for complex A by Gaussian elimination with partial pivoting.
+std::vector<cplx> solve_c(std::vector<std::vector<cplx>> a, std::vector<cplx> y) {
+    const size_t n = y.size();
+    for (size_t c = 0; c < n; ++c) {
+        size_t piv = c;
+        for (size_t r = c + 1; r < n; ++r)
+            if (std::abs(a[r][c]) > std::abs(a[piv][c])) piv = r;
+        std::swap(a[c], a[piv]);
+        std::swap(y[c], y[piv]);
+        for (size_t r = c + 1; r < n; ++r) {
+            const cplx f = a[r][c] / a[c][c];
+            for (size_t k = c; k < n; ++k) a[r][k] -= f * a[c][k];
+            y[r] -= f * y[c];
+        }
+    }
+    std::vector<cplx> x(n);
+    for (size_t r = n; r-- > 0;) {
+        cplx s = y[r];
+        for (size_t k = r + 1; k < n; ++k) s -= a[r][k] * x[k];
+        x[r] = s / a[r][r];
+    }
+    return x;
+}
+
+// Transmittance in front of z0 from n trigonometric moments t_k = sum A e^(i k phi) / b0, in
+// double by other means than the shader: the order cut where a pivot of the Toeplitz matrix is
+// at the bias' floor, T c = v(x0) by complex elimination, the roots of sum conj(c_j) x^j (on the
+// unit circle) as the minima of |q| over 12,000 angles refined by Newton steps, their weights
+// from sum_i w_i x_i^k = t_k, and the share as the shader counts it (1 in front, a ramp across
+// the wrapping zone, beta at x0).
+double transmittance_trig(int n, double b0, const std::vector<cplx>& tb, double z0, double bias, double beta = 0.1) {
+    if (b0 <= 1e-6) return 1.0;
+    std::vector<cplx> t(n + 1, 1.0);
+    for (int k = 1; k <= n; ++k) t[k] = (1.0 - bias) * tb[k - 1] / b0;
+    auto at = [&](int j, int k) { return j >= k ? t[j - k] : std::conj(t[k - j]); };
+    int order = n;
+    {  // pivots of T without pivoting
+        std::vector<std::vector<cplx>> h(n + 1, std::vector<cplx>(n + 1));
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= n; ++j) h[i][j] = at(i, j);
+        for (int j = 1; j <= n && order == n; ++j) {
+            for (int r = j; r <= n; ++r) {
+                const cplx f = h[r][j - 1] / h[j - 1][j - 1];
+                for (int c = j - 1; c <= n; ++c) h[r][c] -= f * h[j - 1][c];
+            }
+            if (!(h[j][j].real() > bias)) order = j - 1;
+        }
+    }
+    if (order == 0) return std::exp(-b0 * beta);
+    const double phi0 = phase(z0);
+    const cplx x0 = std::polar(1.0, phi0);
+    std::vector<std::vector<cplx>> h(order + 1, std::vector<cplx>(order + 1));
+    std::vector<cplx> v(order + 1);
+    for (int i = 0; i <= order; ++i) {
+        v[i] = std::pow(x0, i);
+        for (int j = 0; j <= order; ++j) h[i][j] = at(i, j);
+    }
+    const std::vector<cplx> c = solve_c(h, v);
+    auto q = [&](cplx x) {
+        cplx s = 0.0;
+        for (int j = order; j >= 0; --j) s = s * x + std::conj(c[j]);
+        return s;
+    };
+    auto dq = [&](cplx x) {
+        cplx s = 0.0;
+        for (int j = order; j >= 1; --j) s = s * x + double(j) * std::conj(c[j]);
+        return s;
+    };
+    const int samples = 12000;
+    std::vector<double> mag(samples);
+    for (int i = 0; i < samples; ++i) mag[i] = std::abs(q(std::polar(1.0, 2.0 * M_PI * i / samples)));
+    std::vector<std::pair<double, cplx>> minima;
+    for (int i = 0; i < samples; ++i)
+        if (mag[i] <= mag[(i + 1) % samples] && mag[i] < mag[(i + samples - 1) % samples])
+            minima.push_back({mag[i], std::polar(1.0, 2.0 * M_PI * i / samples)});
+    std::sort(minima.begin(), minima.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<cplx> x = {x0};
+    for (int i = 0; i < order && i < int(minima.size()); ++i) {
+        cplx r = minima[i].second;
+        for (int it = 0; it < 20; ++it) r -= q(r) / dq(r);
+        x.push_back(r);
+    }
+    std::vector<std::vector<cplx>> vander(x.size(), std::vector<cplx>(x.size()));
+    std::vector<cplx> rhs(x.size());
+    for (size_t k = 0; k < x.size(); ++k) {
+        rhs[k] = at(int(k), 0);
+        for (size_t i = 0; i < x.size(); ++i) vander[k][i] = std::pow(x[i], double(k));
+    }
+    const std::vector<cplx> w = solve_c(vander, rhs);
+    double share = beta * w[0].real();
+    for (size_t i = 1; i < x.size(); ++i) {
+        double ang = std::arg(x[i]);
+        if (ang < 0.0) ang += 2.0 * M_PI;
+        const double f = (ang < phi0 ? 1.0 : 0.0) + std::clamp((ang - 2.0 * kScale) / kWrap, 0.0, 1.0);
+        share += f * w[i].real();
+    }
+    return std::clamp(std::exp(-b0 * share), 0.0, 1.0);
+}
+
+// A form of MBOIT: "power4", "power6", "power8", "trig2", "trig3", "trig4".
+struct Form {
+    std::string name;
+    int n;      // the Hankel or Toeplitz order
+    bool trig;
+    double bias;
+};
+Form form(const std::string& name) {
+    const bool trig = name.rfind("trig", 0) == 0;
+    const int count = std::stoi(name.substr(trig ? 4 : 5));
+    const double trig_bias[5] = {0, 0, 4e-7, 8e-7, 1.5e-6};
+    return {name, trig ? count : count / 2, trig, trig ? trig_bias[count] : 5e-7};
+}
+
+// The pixel MBOIT of form `f` gives these fragments (power4: the paper's 4-moment algebra).
+glm::dvec3 cpu_mboit(const std::vector<Fragment>& frags, const Form& form) {
     double b0 = 0.0;
     std::array<double, 8> b{};
+    std::vector<cplx> tb(4, 0.0);
     for (const Fragment& f : frags) {
         b0 += f.absorb;
         for (int k = 0; k < 8; ++k) b[k] += f.absorb * std::pow(f.z, k + 1);
+        for (int k = 0; k < 4; ++k) tb[k] += f.absorb * std::polar(1.0, (k + 1) * phase(f.z));
     }
     glm::dvec4 acc(0.0);
     for (const Fragment& f : frags) {
-        const double t = n == 2 ? transmittance4(b0, {b[0], b[1], b[2], b[3]}, f.z) : transmittance_n(n, b0, b, f.z);
+        const double t = form.trig      ? transmittance_trig(form.n, b0, tb, f.z, form.bias)
+                         : form.n == 2 ? transmittance4(b0, {b[0], b[1], b[2], b[3]}, f.z)
+                                       : transmittance_n(form.n, b0, b, f.z);
         acc += glm::dvec4(glm::dvec3(f.c) * f.c.a, f.c.a) * t;
     }
     const double t = std::exp(-b0);
@@ -230,11 +355,11 @@ glm::dvec3 cpu_mboit(const std::vector<Fragment>& frags, int n) {
 
 }  // namespace
 
-class MboitForms : public ::testing::TestWithParam<int> {};  // moment pairs n: 3, 4
+class MboitForms : public ::testing::TestWithParam<std::string> {};  // power6, power8, trig2..trig4
 
 TEST_P(MboitForms, EqualsACpuReferenceOfTheSameFragments) {
-    const int n = GetParam();
-    Lists l = render_lists(kHere + "/graphs/mboit_and_lists.json", {"moments=power" + std::to_string(2 * n)});
+    const Form f = form(GetParam());
+    Lists l = render_lists(kHere + "/graphs/mboit_and_lists.json", {"moments=" + f.name});
     size_t pixels = 0, layered = 0, off = 0;
     double worst = 0.0;
     for (int y = 0; y < l.height; ++y)
@@ -243,7 +368,7 @@ TEST_P(MboitForms, EqualsACpuReferenceOfTheSameFragments) {
             if (frags.empty()) continue;
             ++pixels;
             layered += frags.size() > 1;
-            const glm::dvec3 want = cpu_mboit(frags, n);
+            const glm::dvec3 want = cpu_mboit(frags, f);
             const int row = l.height - 1 - y;
             double d = 0.0;
             for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(double(l.mboit.at(x, row, k)) - want[k]));
@@ -252,8 +377,8 @@ TEST_P(MboitForms, EqualsACpuReferenceOfTheSameFragments) {
         }
     EXPECT_GT(pixels, 500u);
     EXPECT_GT(layered, 100u);
-    std::printf("%d moments against the CPU's over %zu pixels (%zu layered): %zu over 3/255, largest %.2f/255\n", 2 * n,
-                pixels, layered, off, worst * 255);
+    std::printf("%s against the CPU's over %zu pixels (%zu layered): %zu over 3/255, largest %.2f/255\n",
+                f.name.c_str(), pixels, layered, off, worst * 255);
     // float32 sums against double: where a pivot lies near the bias' floor the two may cut the
     // order differently; 2 % of the pixels at most.
     EXPECT_LE(off, pixels / 50) << "pixels more than 3/255 from the CPU's; largest " << worst * 255 << "/255";
@@ -263,8 +388,8 @@ TEST_P(MboitForms, OneFragmentIsExactAndFewLayersAreNearTheExactResolve) {
     // One fragment alone: the pixel is that fragment's colour over the background, exactly (the
     // white-pixel bug of an earlier 6/8-moment attempt). Two or three layers: as near the exact
     // resolve as 4 moments are, or nearer.
-    const int n = GetParam();
-    Lists l = render_lists(kHere + "/graphs/mboit_and_lists.json", {"moments=power" + std::to_string(2 * n)});
+    const Form f = form(GetParam());
+    Lists l = render_lists(kHere + "/graphs/mboit_and_lists.json", {"moments=" + f.name});
     Lists four = render_lists(kHere + "/graphs/mboit_and_lists.json", {});
     size_t single = 0, few = 0;
     double err = 0.0, err4 = 0.0;
@@ -287,14 +412,14 @@ TEST_P(MboitForms, OneFragmentIsExactAndFewLayersAreNearTheExactResolve) {
         }
     EXPECT_GT(single, 100u);
     ASSERT_GT(few, 50u);
-    std::printf("%d moments, pixels of 2-3 layers: mean error %.2f/255 (4 moments: %.2f/255)\n", 2 * n,
+    std::printf("%s, pixels of 2-3 layers: mean error %.2f/255 (4 power moments: %.2f/255)\n", f.name.c_str(),
                 err / (3.0 * few) * 255, err4 / (3.0 * few) * 255);
-    EXPECT_LT(err, err4) << "more moments must resolve a few layers better";
+    EXPECT_LT(err, err4) << "these moments must resolve a few layers better than 4 power moments";
     EXPECT_LT(err / (3.0 * few), 4.0 / 255);
 }
 
-INSTANTIATE_TEST_SUITE_P(Moments, MboitForms, ::testing::Values(3, 4),
-                         [](const auto& info) { return "power" + std::to_string(2 * info.param); });
+INSTANTIATE_TEST_SUITE_P(Moments, MboitForms, ::testing::Values("power6", "power8", "trig2", "trig3", "trig4"),
+                         [](const auto& info) { return info.param; });
 
 TEST(Mboit, MoreMomentsAreNearerTheExactReferenceOnThePhantom) {
     // The small phantom, every line whole, against variant2_exact: RMSE over the pixels either
@@ -360,7 +485,8 @@ TEST(Mboit, LoneLinesAtEveryDepthKeepTheirColour) {
     };
     const Image exact = render_graph("variant2_exact", {});
     const std::pair<std::string, std::string> forms[] = {
-        {"variant2_mboit", ""}, {"variant2_mboit8", "moments=power6"}, {"variant2_mboit8", "moments=power8"}};
+        {"variant2_mboit", ""},           {"variant2_mboit8", "moments=power6"}, {"variant2_mboit8", "moments=power8"},
+        {"variant2_mboit", "moments=trig2"}, {"variant2_mboit8", "moments=trig3"}, {"variant2_mboit8", "moments=trig4"}};
     for (const auto& [graph, set] : forms) {
         const Image im = render_graph(graph, set.empty() ? std::vector<std::string>{} : std::vector<std::string>{set});
         size_t covered = 0, off = 0;
