@@ -8,7 +8,8 @@
 #   info-gl.txt, info-gl-minimum.txt   the renderer and the limits the engine uses (pathlet info --gl)
 #   nvidia-smi.txt, clocks.csv         the GPU and its SM clock / utilisation every 100 ms (if nvidia-smi)
 #   renders/GRAPH.png, compare.txt     every shipped graph at 960x540 (study phantom, t = 4.5 s; those
-#                                      that need an extension the driver lacks: renders/unsupported.txt), and
+#                                      that need an extension the driver lacks, or EXR in a lean build:
+#                                      renders/unsupported.txt), and
 #                                      its distance to the llvmpipe render of the reference folder:
 #                                      share of pixels more than 8/255 off (pass: <= 0.5 %)
 #   bench_window/, bench_all/          pathlet bench of every shipped variant at 1920x1080 with the
@@ -93,7 +94,9 @@ render_all() {
       "$0" render {} --phantom "$1" --time "$2" --size "$3" --out "$out" --quiet >"$out/log" 2>&1 &&
       f=$(find "$out" -name "*.png" | sort | head -n 1) && [ -n "$f" ] && mv "$f" "$4/{}.png"; rc=$?;
       if [ $rc -ne 0 ] && grep -q "which this driver (.*) lacks" "$out/log"; then
-        echo "{} $(grep -o "needs GL_[A-Za-z0-9_]*" "$out/log" | head -n 1)" >>"$4/unsupported.txt"; rc=0; fi;
+        echo "{} $(grep -o "needs GL_[A-Za-z0-9_]*" "$out/log" | head -n 1)" >>"$4/unsupported.txt"; rc=0;
+      elif [ $rc -ne 0 ] && grep -q "this build has no EXR" "$out/log"; then
+        echo "{} needs EXR (the lean build writes PNG only)" >>"$4/unsupported.txt"; rc=0; fi;
       [ $rc -eq 0 ] || { echo "gpu-check: render of {} failed:" >&2; cat "$out/log" >&2; }; rm -rf "$out"; exit $rc' \
       "$PATHLET" "$PHANTOM" "$TIME" "$RENDER_SIZE" "$dest" || failed=1
   return $failed
