@@ -72,21 +72,25 @@ TEST(TechniquesTable, OneRowATechniqueWithFidelityAndBytes) {
       "set": [ "overlay=false", "window=0" ] })";
     const ScriptRun r = script((dir / "exp.json").string() + " --out " + (dir / "out").string() + " --plots", dir);
     ASSERT_EQ(r.code, 0) << r.err;
-    // technique | setting | size | frame ms | x exact | bytes/px | SSIM | PSNR | RMSE | > 8/255 % | flicker | passes
+    // technique | setting | size | frame ms | x exact | bytes/px | SSIM | PSNR | RMSE | > 8/255 % | flicker | FLIP | passes
     const auto exact = row(r.out, "exact"), wboit = row(r.out, "WBOIT"), mboit = row(r.out, "MBOIT");
-    ASSERT_EQ(exact.size(), 12u) << r.out;
-    ASSERT_EQ(wboit.size(), 12u) << r.out;
-    ASSERT_EQ(mboit.size(), 12u) << r.out;
+    ASSERT_EQ(exact.size(), 13u) << r.out;
+    ASSERT_EQ(wboit.size(), 13u) << r.out;
+    ASSERT_EQ(mboit.size(), 13u) << r.out;
     EXPECT_EQ(exact[6], "1.0000");
+    EXPECT_EQ(exact[11], "0.0000") << "FLIP of the reference against itself";
     for (const auto* t : {&wboit, &mboit}) {
         const double ssim = std::stod((*t)[6]);
         EXPECT_GT(ssim, 0.3) << (*t)[0];
         EXPECT_LT(ssim, 1.0) << (*t)[0] << ": an approximation is not the reference";
         EXPECT_GT(std::stod((*t)[3]), 0.0) << "frame ms";
+        const double flip = std::stod((*t)[11]);
+        EXPECT_GT(flip, 0.0) << (*t)[0] << ": FLIP sees the approximation";
+        EXPECT_LT(flip, 1.0) << (*t)[0];
     }
     EXPECT_EQ(wboit[5], "24") << "20 bytes of sums and 4 of coverage a pixel";
     EXPECT_EQ(mboit[5], "32") << "b0, 4 moments, the colour sums and the coverage";
-    EXPECT_NE(wboit[11].find("accum"), std::string::npos) << "per pass";
+    EXPECT_NE(wboit[12].find("accum"), std::string::npos) << "per pass";
     for (const char* f : {"transparency_techniques.md", "transparency_techniques.csv", "transparency_techniques.png",
                           "transparency_techniques.svg"})
         EXPECT_TRUE(fs::exists(dir / "out" / f)) << f;
