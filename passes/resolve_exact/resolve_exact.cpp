@@ -82,14 +82,11 @@ private:
 };
 
 pathlet::PassTypeInfo resolve_exact_type() {
-    return pathlet::PassTypeBuilder(
-               "resolve_exact",
-               "the exact list resolve (issue 42): every fragment of each pixel's list, sorted by depth (ties by line "
-               "id, then colour) in rounds of a bounded block, composited front to back until the transmittance left "
-               "is below min_transmittance; no fragment cap")
-        .param_int("sort_block", 16, 1, 64,
-                   "fragments sorted per round in a local array (registers); a longer list takes more rounds, "
-                   "never fewer fragments")
+    pathlet::PassTypeBuilder b("resolve_exact",
+                               "the exact list resolve (issue 42): every fragment of each pixel's list, sorted by depth "
+                               "(ties by line id, then colour) in rounds of a bounded block, composited front to back "
+                               "until the transmittance left is below min_transmittance; no fragment cap");
+    return pathlet::oit::declare_sort_block(b, "; a longer list takes more rounds, never fewer fragments")
         .param_float("min_transmittance", 1e-4, 0.0, 1.0,
                      "stop compositing a pixel when the light left through its fragments is below this (0: every "
                      "fragment)")

@@ -20,6 +20,7 @@ public:
         targets_ = {"color"};
         std::vector<std::string> defines = pathlet::oit::defines();
         defines.push_back("MAX_FRAGMENTS " + std::to_string(ctx.params().i("max_fragments")));
+        defines.push_back("SORT_BLOCK " + std::to_string(ctx.params().i("sort_block")));
         for (const char* pin : {"unlit", "front_alpha"})
             if (ctx.connected(pin)) {
                 defines.push_back(std::string(pin == std::string("unlit") ? "UNLIT_LOCATION " : "FRONT_ALPHA_LOCATION ") +
@@ -109,6 +110,7 @@ pathlet::PassTypeInfo resolve_list_type() {
                                "fragment's own volume AO, per fragment");
     pathlet::lines::declare_line_width_params(b);
     pathlet::lines::declare_volume_ao_params(b);
+    pathlet::oit::declare_sort_block(b, "; at least max_fragments: one round, the nearest max_fragments at once");
     return b
             .param_int("max_fragments", 32, 1, 64,
                        "nearest fragments kept per pixel; a longer list drops its farthest (counted as "

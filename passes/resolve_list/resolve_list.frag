@@ -2,9 +2,9 @@
 // resolve_list: per pixel, the list's fragments sorted by depth (ties by line id, so the result
 // does not depend on the rasterisation order), composited front to back with early termination
 // at alpha >= 0.99, over the background. The K nearest fragments are kept (a longer list drops
-// its farthest ones and is counted). They are sorted in rounds of at most 16 (oit_block_sort.glsl,
-// as resolve_exact does): most pixels are opaque within the first round, so they never pay for
-// an insertion sort of K. With an AO map of an opaque core (variant2_oit_ao), AO is
+// its farthest ones and is counted). They are sorted in rounds of sort_block (oit_block_sort.glsl,
+// as resolve_exact does): a pixel opaque within its first round never pays for an insertion sort
+// of K; a list of faint fragments (variant 4) is better sorted in one round of K. With an AO map of an opaque core (variant2_oit_ao), AO is
 // applied per fragment: only to fragments at the core's depth; faded fragments in front of the
 // core and fragments behind it stay unoccluded.
 #include "oit_list.glsl"
@@ -16,7 +16,7 @@ uniform usamplerBuffer u_records;  // the pass's view of fill_list's records
 // K, the nearest fragments kept (max_fragments), is compiled in: the arrays are K long, so a
 // pixel pays for the lists the graph asked for, not for the largest one allowed.
 #define K MAX_FRAGMENTS
-#define OIT_BLOCK (K < 16 ? K : 16)  // a round's block: resolve_exact's default sort_block
+#define OIT_BLOCK (K < SORT_BLOCK ? K : SORT_BLOCK)  // a round's block (sort_block), never beyond K
 
 // The pins, by declaration (u_nodes is the pass's view of the `nodes` buffer):
 layout(r32ui) uniform readonly uimage2D u_heads;
