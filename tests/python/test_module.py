@@ -264,6 +264,15 @@ def test_quality_against_a_reference_is_the_commands(pathlet, cli, scene, tmp_pa
     assert len(q["images"]) == 8 and all(os.path.exists(f) for f in q["images"])  # diff and flip per frame
     same = pathlet.quality(g, scene, time="2:2.08:0.04", size=(96, 54), reference=g)
     assert same["ssim"] == 1.0 and same["rmse"] == 0.0 and same["flicker_excess"] == 0.0 and same["flip"] == 0.0
+    # FLIP's observer as the command's --ppd: farther away (more pixels a degree), smaller errors.
+    far = cli("quality", "variant2_oit", "--reference", "variant2_exact", *args, "--phantom", "small", "--ppd", "200").stdout
+    q200 = pathlet.quality(g, scene, time="2:2.08:0.04", size=(96, 54), reference="variant2_exact", ppd=200)
+    assert f"flip {q200['flip']:.5f} (mean LDR-FLIP over the covered pixels; all pixels {q200['flip_all']:.5f}; 200.0" in far
+    assert 0 < q200["flip"] < q["flip"] and q200["ssim"] == q["ssim"]
+    with pytest.raises(ValueError, match="ppd must be a positive number"):
+        pathlet.quality(g, scene, time="2:2.08:0.04", size=(32, 18), reference="variant2_exact", ppd=0)
+    with pytest.raises(ValueError, match="ppd needs reference="):
+        pathlet.quality(g, scene, time="2:2.08:0.04", size=(32, 18), ppd=100)
 
 
 def test_render_keeps_the_commands_limits(pathlet, scene):

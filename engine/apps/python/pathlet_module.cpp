@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 
 namespace py = pybind11;
 using nlohmann::json;
@@ -496,8 +497,13 @@ py::dict run_quality(const std::string& graph, const std::vector<std::string>& s
 // quality(..., reference=...): fidelity against a reference graph (issue 42).
 py::dict run_reference(const std::string& graph, const std::vector<std::string>& sets, const std::string& reference,
                        const std::vector<std::string>& reference_sets, const SceneRef& scene, const std::string& time,
-                       const std::string& size, const std::string& out_dir) {
+                       const std::string& size, const std::string& out_dir, std::optional<double> ppd) {
     quality::ReferenceOptions o;
+    if (ppd) {  // as the command's --ppd
+        if (!(*ppd > 0.0) || !std::isfinite(*ppd))
+            throw py::value_error("ppd must be a positive number of pixels per degree (got " + std::to_string(*ppd) + ")");
+        o.ppd = *ppd;
+    }
     o.graph_path = graph;
     o.reference_path = reference;
     o.sets = sets;

@@ -426,7 +426,7 @@ def run_experiment(path, scene=None, *, out=None, sizes=None, time=None, frames=
 
 def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=256,
             include_own_line=False, max_distance=10.0, depth_tolerance=0.002, transparency=False,
-            focus_share=0.1, visible=0.05, repeat=1, reference=None, out=None):
+            focus_share=0.1, visible=0.05, repeat=1, reference=None, out=None, ppd=None):
     """``pathlet quality`` as numbers (time None: 11 frames 0.04 s apart from the middle of the
     data's span, said on stderr; the study phantom's 9:9.4:0.04): flicker (mean |dAO| where the same line stays),
     geometry_change, with flicker_rays > 0 reference_change and flicker_excess (how much the
@@ -445,15 +445,19 @@ def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=
     over the same times, size and camera (graph's sets for both, the reference's own sets after
     them), compared over the pixels either covers: ssim (windowed, Wang et al. 2004, 11x11
     Gaussian on luminance), psnr, rmse, share_over (fraction more than 8/255 apart), flip (mean
-    LDR-FLIP, Andersson et al. 2020, at 67 pixels per degree; flip_all over every pixel), pixels,
+    LDR-FLIP, Andersson et al. 2020, at ppd pixels per degree, default 67 as the command's --ppd;
+    flip_all over every pixel), pixels,
     flicker_excess (frame-to-frame change beyond the reference's own; flicker and
     reference_change are the two changes), per_frame (the measures per frame); out=DIR writes
     the difference and FLIP images there (their paths in images)."""
     g = _graph(graph)
+    if reference is None and ppd is not None:
+        raise ValueError("ppd needs reference= (FLIP compares two graphs' pictures)")
     if reference is not None:
         r = _graph(reference)
         return _core().quality_reference(g.path, list(g.sets), r.path, list(r.sets), scene._h, _time_text(time),
-                                         _size_text(size), "" if out is None else str(out))
+                                         _size_text(size), "" if out is None else str(out),
+                                         None if ppd is None else float(ppd))
     if transparency:
         return _core().transparency(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), int(repeat),
                                     float(focus_share), float(visible))
