@@ -129,8 +129,9 @@ std::vector<double> real_roots(const std::vector<double>& c) {
     return roots;
 }
 
-// x = A^-1 y by Gaussian elimination with partial pivoting.
-std::vector<double> solve(std::vector<std::vector<double>> a, std::vector<double> y) {
+// x = A^-1 y by Gaussian elimination with partial pivoting (real or complex).
+template <class T>
+std::vector<T> solve(std::vector<std::vector<T>> a, std::vector<T> y) {
     const size_t n = y.size();
     for (size_t c = 0; c < n; ++c) {
         size_t piv = c;
@@ -139,14 +140,14 @@ std::vector<double> solve(std::vector<std::vector<double>> a, std::vector<double
         std::swap(a[c], a[piv]);
         std::swap(y[c], y[piv]);
         for (size_t r = c + 1; r < n; ++r) {
-            const double f = a[r][c] / a[c][c];
+            const T f = a[r][c] / a[c][c];
             for (size_t k = c; k < n; ++k) a[r][k] -= f * a[c][k];
             y[r] -= f * y[c];
         }
     }
-    std::vector<double> x(n);
+    std::vector<T> x(n);
     for (size_t r = n; r-- > 0;) {
-        double s = y[r];
+        T s = y[r];
         for (size_t k = r + 1; k < n; ++k) s -= a[r][k] * x[k];
         x[r] = s / a[r][r];
     }
@@ -223,30 +224,6 @@ using cplx = std::complex<double>;
 const double kWrap = 0.1 * M_PI, kScale = M_PI - 0.5 * kWrap;
 double phase(double z) { return (z + 1.0) * kScale; }
 
-// x = A^-1 y for complex A by Gaussian elimination with partial pivoting.
-std::vector<cplx> solve_c(std::vector<std::vector<cplx>> a, std::vector<cplx> y) {
-    const size_t n = y.size();
-    for (size_t c = 0; c < n; ++c) {
-        size_t piv = c;
-        for (size_t r = c + 1; r < n; ++r)
-            if (std::abs(a[r][c]) > std::abs(a[piv][c])) piv = r;
-        std::swap(a[c], a[piv]);
-        std::swap(y[c], y[piv]);
-        for (size_t r = c + 1; r < n; ++r) {
-            const cplx f = a[r][c] / a[c][c];
-            for (size_t k = c; k < n; ++k) a[r][k] -= f * a[c][k];
-            y[r] -= f * y[c];
-        }
-    }
-    std::vector<cplx> x(n);
-    for (size_t r = n; r-- > 0;) {
-        cplx s = y[r];
-        for (size_t k = r + 1; k < n; ++k) s -= a[r][k] * x[k];
-        x[r] = s / a[r][r];
-    }
-    return x;
-}
-
 // Transmittance in front of z0 from n trigonometric moments t_k = sum A e^(i k phi) / b0, in
 // double by other means than the shader: the order cut where a pivot of the Toeplitz matrix is
 // at the bias' floor, T c = v(x0) by complex elimination, the roots of sum conj(c_j) x^j (on the
@@ -280,7 +257,7 @@ double transmittance_trig(int n, double b0, const std::vector<cplx>& tb, double 
         v[i] = std::pow(x0, i);
         for (int j = 0; j <= order; ++j) h[i][j] = at(i, j);
     }
-    const std::vector<cplx> c = solve_c(h, v);
+    const std::vector<cplx> c = solve<cplx>(h, v);
     auto q = [&](cplx x) {
         cplx s = 0.0;
         for (int j = order; j >= 0; --j) s = s * x + std::conj(c[j]);
@@ -311,7 +288,7 @@ double transmittance_trig(int n, double b0, const std::vector<cplx>& tb, double 
         rhs[k] = at(int(k), 0);
         for (size_t i = 0; i < x.size(); ++i) vander[k][i] = std::pow(x[i], double(k));
     }
-    const std::vector<cplx> w = solve_c(vander, rhs);
+    const std::vector<cplx> w = solve<cplx>(vander, rhs);
     double share = beta * w[0].real();
     for (size_t i = 1; i < x.size(); ++i) {
         double ang = std::arg(x[i]);

@@ -37,6 +37,17 @@ Blue blue_share(const Image& im) {
     return b;
 }
 
+// The helix bundle as every test here draws it: 160x120 at t = 6 s, a 3 s window, thick lines,
+// no overlay or wall.
+RenderOptions helix_options(const std::string& graph_path) {
+    RenderOptions opt;
+    opt.graph_path = graph_path;
+    opt.size = {160, 120};
+    opt.time.start = 6.0;
+    opt.sets = {"line_width=1.2", "window=3", "overlay=false", "wall=false"};
+    return opt;
+}
+
 }  // namespace
 
 TEST(EveryTechnique, OneFadeHookGoesIntoEveryVariant2Graph) {
@@ -55,11 +66,7 @@ TEST(EveryTechnique, OneFadeHookGoesIntoEveryVariant2Graph) {
             std::printf("skipped: %s\n", why.c_str());
             continue;
         }
-        RenderOptions opt;
-        opt.graph_path = g.path;
-        opt.size = {160, 120};
-        opt.time.start = 6.0;
-        opt.sets = {"line_width=1.2", "window=3", "overlay=false", "wall=false"};
+        RenderOptions opt = helix_options(g.path);
         const Frame plain = render_frame(rt, helix_bundle_scene(), opt, {"final"});
         opt.sets.push_back("color_hook=" + hook);
         opt.sets = rt.user_sets(opt.sets);
@@ -93,11 +100,7 @@ TEST(EveryTechnique, TheOpaqueCoresAoCombinesWithEachBlendTechnique) {
     };
     for (const char* technique : {"variant2_wboit", "variant2_mboit"}) {
         SCOPED_TRACE(technique);
-        RenderOptions opt;
-        opt.size = {160, 120};
-        opt.time.start = 6.0;
-        opt.graph_path = shipped_graph(technique).path;
-        opt.sets = {"line_width=1.2", "window=3", "overlay=false", "wall=false"};
+        RenderOptions opt = helix_options(shipped_graph(technique).path);
         const Frame plain = render_frame(rt, helix_bundle_scene(), opt, {"final"});
         opt.graph_path = shipped_graph(std::string(technique) + "_ao").path;
         opt.sets.push_back("strength=0");
@@ -134,12 +137,10 @@ TEST(EveryTechnique, TheHookDecidesTheOpaqueCoreToo) {
             std::printf("skipped: %s\n", why.c_str());
             continue;
         }
-        RenderOptions opt;
-        opt.graph_path = g.path;
-        opt.size = {160, 120};
-        opt.time.start = 6.0;
-        opt.sets = rt.user_sets({"line_width=1.2", "window=3", "overlay=false", "wall=false", "color_hook=" + hook,
-                                 "strength=0"});
+        RenderOptions opt = helix_options(g.path);
+        opt.sets.push_back("color_hook=" + hook);
+        opt.sets.push_back("strength=0");
+        opt.sets = rt.user_sets(opt.sets);
         const Frame unlit = render_frame(rt, helix_bundle_scene(), opt, {"final"});
         opt.sets.back() = "strength=2";
         const Frame lit = render_frame(rt, helix_bundle_scene(), opt, {"final"});

@@ -4,12 +4,10 @@
 // one row a technique with the reference's SSIM 1 and the others' in (0, 1), the bytes a pixel
 // of the plan (WBOIT 24, MBOIT 32 with the coverage), and --plots must write the figure. A bad
 // experiment file is exit status 2 with the file named.
+#include "cli_run.hpp"
+
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,27 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ScriptRun {
-    int code = -1;
-    std::string out, err;
-};
-
-ScriptRun script(const std::string& args, const fs::path& dir) {
-    const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-    const std::string cmd = std::string("/usr/bin/python3 ") + PATHLET_SOURCE_DIR + "/scripts/transparency-techniques.py " +
-                            args + " --pathlet " + PATHLET_CLI + " >" + out + " 2>" + err;
-    const int status = std::system(cmd.c_str());
-    ScriptRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-    auto slurp = [](const std::string& p) {
-        std::ifstream in(p);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    };
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
+CliRun script(const std::string& args) {
+    return run_command(std::string("/usr/bin/python3 ") + PATHLET_SOURCE_DIR + "/scripts/transparency-techniques.py " +
+                       args + " --pathlet " + PATHLET_CLI);
 }
 
 // The cells of the table row whose first cell is `name`.
@@ -70,7 +50,7 @@ TEST(TechniquesTable, OneRowATechniqueWithFidelityAndBytes) {
         { "graph": "variant2_wboit", "label": "WBOIT" }, { "graph": "variant2_mboit", "label": "MBOIT" } ],
       "data": [ { "phantom": "small" } ], "sizes": [ "640x360" ], "time": "2:2.04:0.04", "frames": 1, "warmup": 0,
       "set": [ "overlay=false", "window=0" ] })";
-    const ScriptRun r = script((dir / "exp.json").string() + " --out " + (dir / "out").string() + " --plots", dir);
+    const CliRun r = script((dir / "exp.json").string() + " --out " + (dir / "out").string() + " --plots");
     ASSERT_EQ(r.code, 0) << r.err;
     // technique | setting | size | frame ms | x exact | bytes/px | SSIM | PSNR | RMSE | > 8/255 % | flicker | FLIP | passes
     const auto exact = row(r.out, "exact"), wboit = row(r.out, "WBOIT"), mboit = row(r.out, "MBOIT");
@@ -101,11 +81,11 @@ TEST(TechniquesTable, ABadExperimentIsAUsageError) {
     const fs::path dir = fs::temp_directory_path() / ("pathlet_tt_bad_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "bad.json") << R"({ "name": "bad", "graphs": [] })";
-    ScriptRun r = script((dir / "bad.json").string() + " --out " + (dir / "out").string(), dir);
+    CliRun r = script((dir / "bad.json").string() + " --out " + (dir / "out").string());
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("bad.json: /graphs"), std::string::npos) << r.err;
     std::ofstream(dir / "broken.json") << "{ not json";
-    r = script((dir / "broken.json").string(), dir);
+    r = script((dir / "broken.json").string());
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find("broken.json"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "out" / "transparency_techniques.md")) << "nothing written";
