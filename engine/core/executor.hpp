@@ -6,6 +6,7 @@
 
 #include "frames/frames_in_flight.hpp"
 #include "graph/graph_model.hpp"
+#include "pass_context.hpp"
 
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/pass.hpp>
@@ -25,17 +26,7 @@ class AsyncOutput;
 class GlContext;
 class Profiler;
 
-struct PassError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-struct FrameInfo {
-    uint64_t index = 0;
-    double time = 0.0;
-    Camera camera;
-};
-
-class Executor {
+class Executor : private PassHost {
 public:
     // `cg`, `scene` and `gl` must outlive the executor. `profiler` may be null.
     Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene, Profiler* profiler = nullptr);
@@ -56,25 +47,28 @@ public:
     // else. Throws PassError naming the pass; the pass then keeps its old parameters.
     void reparam(size_t i);
 
-    const CompiledGraph& graph() const { return cg_; }
+    const CompiledGraph& graph() const override { return cg_; }
     Texture texture(const std::string& resource) const;  // current content (after run_frame)
     Buffer buffer(const std::string& resource) const;
-    std::vector<std::string> shader_dirs_for(const PassTypeInfo& type) const;
+    // Where pass i's shaders come from (its search path and hook files): what the viewer watches.
+    const ShaderSource& shaders(size_t i) const { return contexts_.at(i)->shaders; }
 
 private:
-    friend struct PassContextImpl;
-    friend class PassContext;
-    struct Physical {
-        Texture tex;
-        Buffer buf;
-    };
+    // PassHost: what the passes' contexts ask for.
+    const GpuScene& scene() const override { return scene_; }
+    const FrameInfo& frame() const override { return frame_; }
+    Physical& physical(int resource, bool previous) override;
+    GLuint framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass) override;
+    GLuint empty_vertex_array() const override { return empty_vao_; }
+    void stat(const std::string& pass, const std::string& name, double value) override;
+    void frame_incomplete(uint64_t frame) override { incomplete_.insert(frame); }
+    AsyncOutput& pass_output() override;
+    void used(const PassBindings& bindings, int uniform_blocks) override;
+
     Physical make_physical(const PoolSlot& s, const std::string& label);
-    const Physical& physical(int resource, bool previous) const;
-    GLuint framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass);
+    const Physical& current(int resource) const;
     void check_gl(const std::string& pass, const char* phase);
     void reset_gl_state();
-    void bind_pins(const PassContextImpl& impl);
-    int take_units(PassContextImpl& impl, bool image, int count, const std::string& uniform);
 
     GlContext& gl_;
     const CompiledGraph& cg_;

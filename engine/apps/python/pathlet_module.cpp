@@ -235,17 +235,8 @@ json describe_graph(Runtime& rt, const std::string& path, const std::vector<std:
             }
             return value;
         };
-        std::shared_ptr<const PassTypeInfo> type;  // with the parameters its hooks declare
-        if (const PassTypeInfo* t = rt.registry.find(p.type)) {
-            json hooks = json::object();
-            for (const auto& d : t->params)
-                if (!d.hook.empty()) hooks[d.name] = value_of(d, nullptr);
-            try {
-                type = instance_type(*t, hooks, g.dirs);
-            } catch (const HookError&) {  // named when the graph is compiled
-                type = std::shared_ptr<const PassTypeInfo>(t, [](const PassTypeInfo*) {});
-            }
-        }
+        // With the parameters its hooks declare (resolved when the graph loaded).
+        std::shared_ptr<const PassTypeInfo> type = p.instance_type;
         if (type)
             for (const auto& d : type->params) {
                 json x = decl_json(d);

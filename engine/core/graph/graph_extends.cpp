@@ -75,8 +75,8 @@ void merge_named(json& base, const json& over) {
 
 class Merger {
 public:
-    Merger(std::string file, std::vector<Diagnostic>& diags, std::vector<ExtendsChange>& changes)
-        : file_(std::move(file)), diags_(diags), changes_(changes) {}
+    Merger(std::string file, std::vector<Diagnostic>& diags, LayerLog& log)
+        : file_(std::move(file)), diags_(diags), log_(log) {}
 
     void passes(json& base, const json& over) {
         if (!base.is_array()) base = json::array();
@@ -101,6 +101,8 @@ public:
                 }
                 json added = p;
                 added.erase("remove");
+                if (added.contains("params") && added["params"].is_object())
+                    for (const auto& [key, value] : added["params"].items()) log_.written[name][key] = log_.layers;
                 base.push_back(std::move(added));
                 continue;
             }
@@ -116,11 +118,8 @@ public:
                 if (k == "name" || k == "remove") continue;
                 if ((k == "params" || k == "inputs" || k == "outputs") && v.is_object()) {
                     if (!b.contains(k) || !b[k].is_object()) b[k] = json::object();
-                    if (k == "params") {  // kept: a replaced hook's parameters are known only with the types
-                        ExtendsChange c{name, {file_, b[k], {}}};
-                        for (const auto& [key, value] : v.items()) c.change.keys.push_back(key);
-                        changes_.push_back(std::move(c));
-                    }
+                    if (k == "params")
+                        for (const auto& [key, value] : v.items()) log_.written[name][key] = log_.layers;
                     merge_keys(b[k], v);
                 } else if (v.is_null()) {
                     b.erase(k);
@@ -135,17 +134,78 @@ private:
     void error(const std::string& ptr, const std::string& msg) { diags_.push_back({file_, ptr, msg}); }
     std::string file_;
     std::vector<Diagnostic>& diags_;
-    std::vector<ExtendsChange>& changes_;
+    LayerLog& log_;
 };
 
 }  // namespace
 
+std::map<std::string, std::map<std::string, std::string>> graph_detail::hook_names(const json& graph) {
+    std::map<std::string, std::map<std::string, std::string>> out;
+    if (!graph.is_object() || !graph.contains("passes") || !graph["passes"].is_array()) return out;
+    const json* vars = graph.contains("variables") && graph["variables"].is_object() ? &graph["variables"] : nullptr;
+    for (const json& p : graph["passes"]) {
+        if (!p.is_object() || !p.contains("name") || !p["name"].is_string()) continue;
+        const json params = p.value("params", json::object());
+        for (const HookRole role : kHookRoles) {
+            const char* param = hook_role(role).param;
+            std::string name;
+            if (params.is_object() && params.contains(param) && params[param].is_string()) {
+                name = params[param].get<std::string>();
+                if (is_variable_ref(params[param]) && vars && vars->contains(name.substr(1))) {
+                    const json& v = (*vars)[name.substr(1)];
+                    if (v.is_object() && v.contains("default") && v["default"].is_string()) name = v["default"].get<std::string>();
+                }
+            }
+            out[p["name"].get<std::string>()][param] = name;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// A hook as one value: "color_hook": {"file": "my_fade.glsl", "keep_fast": 0.9} is the file and
+// its own parameters, written beside it in the pass's params (as the flat form writes them).
+void flatten_hook_values(json& root, const std::string& path) {
+    if (!root.is_object() || !root.contains("passes") || !root["passes"].is_array()) return;
+    std::vector<Diagnostic> diags;
+    for (size_t i = 0; i < root["passes"].size(); ++i) {
+        json& p = root["passes"][i];
+        if (!p.is_object() || !p.contains("params") || !p["params"].is_object()) continue;
+        json& params = p["params"];
+        for (const HookRole role : kHookRoles) {
+            const char* key = hook_role(role).param;
+            if (!params.contains(key) || !params[key].is_object()) continue;
+            const std::string ptr = "/passes/" + std::to_string(i) + "/params/" + key;
+            const json value = params[key];
+            if (!value.contains("file") || !value["file"].is_string()) {
+                diags.push_back({path, ptr, std::string("a hook given as an object names its file: {\"file\": \"my_fade.glsl\", ...its parameters}")});
+                continue;
+            }
+            params[key] = value["file"];
+            for (const auto& [k, v] : value.items()) {
+                if (k == "file") continue;
+                if (params.contains(k))
+                    diags.push_back({path, ptr + "/" + pointer_escape(k), "parameter '" + k + "' is given twice: in " + key + " and beside it"});
+                params[k] = v;
+            }
+        }
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+}
+
+}  // namespace
+
 json graph_detail::expand_extends(json root, const std::string& path, std::vector<std::string>& dirs,
-                    std::vector<std::string>& chain, std::vector<ExtendsChange>* changes) {
-    std::vector<ExtendsChange> ignored;
-    if (!changes) changes = &ignored;
+                                  std::vector<std::string>& chain, LayerLog* log) {
+    LayerLog ignored;
+    if (!log) log = &ignored;
+    flatten_hook_values(root, path);
     dirs.push_back(fs::path(path).parent_path().lexically_normal().string());
-    if (!root.is_object() || !root.contains("extends")) return root;
+    if (!root.is_object() || !root.contains("extends")) {
+        ++log->layers;  // the deepest base: layer 0, what every parameter it sets was written at
+        return root;
+    }
     const json ext = root["extends"];
     root.erase("extends");
     if (!ext.is_string() || ext.get<std::string>().empty())
@@ -165,7 +225,7 @@ json graph_detail::expand_extends(json root, const std::string& path, std::vecto
     if (chain.size() >= 16) throw GraphError({{path, "/extends", "extends nested deeper than 16 graphs"}});
     chain.push_back(base_file);
     json base = read_graph_json(base_file);
-    base = expand_extends(std::move(base), base_file, dirs, chain, changes);
+    base = expand_extends(std::move(base), base_file, dirs, chain, log);
     if (!base.is_object()) throw GraphError({{base_file, "", "a graph file must be a JSON object"}});
 
     // The base's plugin folders stay relative to the base's own file.
@@ -177,7 +237,8 @@ json graph_detail::expand_extends(json root, const std::string& path, std::vecto
     base.erase("name");  // a graph's name is its own file's (or that file's name)
 
     std::vector<Diagnostic> diags;
-    Merger m(path, diags, *changes);
+    const auto hooks_before = hook_names(base);
+    Merger m(path, diags, *log);
     for (const auto& [k, v] : root.items()) {
         if ((k == "variables" || k == "resources") && v.is_object()) {
             if (!base.contains(k) || !base[k].is_object()) base[k] = json::object();
@@ -191,6 +252,16 @@ json graph_detail::expand_extends(json root, const std::string& path, std::vecto
         }
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
+    // The hooks this file replaced (its own or through a variable's default).
+    const auto hooks_after = hook_names(base);
+    for (const auto& [pass, names] : hooks_after) {
+        const auto was = hooks_before.find(pass);
+        if (was == hooks_before.end()) continue;  // a pass this file adds
+        for (const auto& [param, name] : names)
+            if (was->second.at(param) != name)
+                log->swaps.push_back({pass, {param, log->layers, path, was->second.at(param), name}});
+    }
+    ++log->layers;
     return base;
 }
 

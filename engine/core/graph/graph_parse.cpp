@@ -431,8 +431,8 @@ namespace {
 // without, they are thrown (a JSON syntax error or a wrong "extends" is thrown either way).
 GraphFile parse_root(json root, const std::string& path, std::vector<Diagnostic>* diags = nullptr) {
     std::vector<std::string> dirs, chain;
-    std::vector<ExtendsChange> changes;
-    root = expand_extends(std::move(root), path, dirs, chain, &changes);
+    LayerLog log;
+    root = expand_extends(std::move(root), path, dirs, chain, &log);
     Parser p(path);
     GraphFile g = p.parse(root);
     if (!p.diags.empty() && !diags) throw GraphError(std::move(p.diags));
@@ -441,12 +441,12 @@ GraphFile parse_root(json root, const std::string& path, std::vector<Diagnostic>
     if (g.name.empty()) g.name = std::filesystem::path(path).stem().string();
     g.dirs = std::move(dirs);
     g.extends = std::move(chain);
-    for (auto& c : changes)
-        for (auto& pass : g.passes)
-            if (pass.name == c.pass) {
-                pass.changes.push_back(std::move(c.change));
-                break;
-            }
+    g.layers = log.layers;
+    for (auto& pass : g.passes) {
+        if (const auto it = log.written.find(pass.name); it != log.written.end()) pass.written = it->second;
+        for (const auto& [name, swap] : log.swaps)
+            if (name == pass.name) pass.swaps.push_back(swap);
+    }
     return g;
 }
 }  // namespace

@@ -236,8 +236,8 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
 }  // namespace graph_detail
 
 std::vector<Diagnostic> validate_graph(const GraphFile& file, const PassRegistry& reg) {
-    std::optional<GraphFile> settled;
-    const GraphFile& g = settle_pending_swaps(file, reg, settled);
+    std::optional<GraphFile> resolved;
+    const GraphFile& g = with_hooks_resolved(file, reg, resolved);
     std::vector<Diagnostic> diags;
     GraphIndex idx = build_index(g, reg, diags);
     validate_index(idx, diags);

@@ -66,10 +66,10 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                    "cull only when the window holds at least this many data segments: below it the culling's "
                    "fixed work (its dispatches and the depth pyramid) costs more than the hidden chunks save "
                    "(llvmpipe, study phantom, 720p: even at 68k, 15 % faster at 78k); 0 = always")
-        .param_hook("color_hook", "color", defaults.color,
+        .param_hook(HookRole::color, defaults.color,
                     "colour hook: a GLSL file (on the shader path or next to the graph) defining vec4 "
                     "line_color_hook(vec4 rgba, LinePoint p); empty = the colour map as it is, opaque")
-        .param_hook("width_hook", "width", defaults.width,
+        .param_hook(HookRole::width, defaults.width,
                     "width hook: a GLSL file defining float line_width_hook(LinePoint p), a multiplier of the "
                     "width (0..4); empty = full width")
         .input_buffer("hook_buffer",

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include <pathlet/hook.hpp>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,9 +36,9 @@ struct ParamDecl {
     std::vector<std::string> choices;                // Enum only
     std::string doc;
     bool pixels = false;  // a length in picture pixels: bound as u_<name> times the pixel scale
-    // A string naming a hook file of this role ("color" or "width", pathlet/lines.hpp): the
-    // uniforms the file annotates with @param become parameters of the pass instance.
-    std::string hook;
+    // A string naming a hook file of this role (pathlet/hook.hpp): the uniforms the file
+    // annotates with @param become parameters of the pass instance.
+    std::optional<HookRole> hook;
     std::string origin;   // a parameter a hook declared: "file.frag:12"
 
     // Checks and converts a JSON value (ints accepted for floats, "#rrggbb" for colours).
@@ -134,9 +136,9 @@ public:
     PassTypeBuilder& param_enum(const std::string& name, const std::string& def, std::vector<std::string> choices,
                                 const std::string& doc);
     PassTypeBuilder& param_string(const std::string& name, const std::string& def, const std::string& doc);
-    // A hook file ("color" or "width" role): its @param uniforms become the instance's parameters.
-    PassTypeBuilder& param_hook(const std::string& name, const std::string& role, const std::string& def,
-                                const std::string& doc);
+    // The parameter naming the pass's hook file of `role` (its name from pathlet/hook.hpp:
+    // color_hook, width_hook): the file's @param uniforms become the instance's parameters.
+    PassTypeBuilder& param_hook(HookRole role, const std::string& def, const std::string& doc);
     PassTypeBuilder& param_vec3(const std::string& name, glm::vec3 def, const std::string& doc);
     PassTypeBuilder& param_color(const std::string& name, glm::vec3 def, const std::string& doc);
     // Any parameter, e.g. one reflected from a shader.
@@ -223,7 +225,6 @@ public:
     const PassTypeInfo* type() const { return type_; }
 
 private:
-    friend class Executor;
     const json& at(const std::string& n) const;
     std::string pass_;
     json v_;
@@ -251,6 +252,8 @@ struct Camera {
 
 class GpuScene;
 class ShaderProgram;
+class ShaderSource;
+struct ShaderStage;
 struct PassContextImpl;
 
 // Pathlet's shared data folder (shaders/, graphs/, fonts/): share/pathlet beside libpathlet's
@@ -278,13 +281,19 @@ public:
     Buffer grow_buffer(const std::string& pin, size_t bytes);
 
     const GpuScene& scene() const;
-    // Compiles (once, cached) a program from shader files found on the shader search path
-    // (the pass's own folder first). Compile errors throw and name the file and line.
+    // Where the pass's shaders come from: the search path (PATHLET_SHADER_PATH, the pass's own
+    // folder, the shared shaders, the graph's folders) and the hook files the graph resolved.
+    const ShaderSource& shaders() const;
+    // Compiles (once, cached) a program from shader file names found on shaders()' path (the
+    // pass's own folder first). Compile errors throw and name the file and line.
     // The program is bound by declaration: its uniforms u_<param> hold the pass's parameters
     // (again after every parameter change, before setup() runs), its samplers and images
     // u_<pin> the pins' textures (bound before each execute()). A uniform of that name whose
     // type does not fit the parameter is an error. Set what you derive yourself after that.
     ShaderProgram& program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+    // The same from shader objects given explicitly (files found with shaders(): a hook after
+    // the line kit's definitions, a fragment-style file compiled as compute).
+    ShaderProgram& program_from(const std::vector<ShaderStage>& stages, const std::vector<std::string>& defines = {});
     // The storage-buffer binding point the engine gave buffer pin `pin` (declaration order among
     // the pass's buffer pins, from 0). Every program() of the pass has it as the define
     // binding_define(pin) ("nodes" -> NODES_BINDING), and the executor binds the pin's buffer
