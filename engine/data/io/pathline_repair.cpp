@@ -1,4 +1,4 @@
-#include "limits.hpp"
+#include "util/input_limits.hpp"
 #include "units.hpp"
 #include "raw_polylines.hpp"
 
