@@ -1,9 +1,10 @@
 // `pathlet view` without its command line: a window (OpenGL 4.5 core through GLFW) that shows a
 // graph's first output live, on the same engine, plugins and scene loading as `render`. The
 // engine adopts the window's context (GlContext::adopt_current), so passes run unchanged.
+//   viewer        this, and its loop: one shown frame is input, frame (panels, hot reload,
+//                 the graph), present
 //   view_window   the window and Dear ImGui
 //   view_input    keys, drags and the wheel, as the window delivers them
-//   view_loop     one shown frame: input, frame (panels, hot reload, the graph), present
 //   window_pixels the output drawn on the window, the window kept for --screenshot-window
 //   view_session  the graph: parameter changes, graph switches, hot reload
 //   view_panels, orbit_view, file_watch, view_script: the panels, camera and clock, file
