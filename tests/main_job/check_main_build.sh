@@ -17,7 +17,7 @@ echo "main.sh builds: $(echo $built)"
 # An allow-list: the engine's runtime targets and each shipped pass (passes/*/CMakeLists.txt's
 # pathlet_add_pass, not NO_INSTALL) with its shaders. Anything else (a test, benchmark, fuzzer,
 # fixture plugin, the Python module, a target named tomorrow) is a failure.
-allowed="pathlet pathlet_cli pathlet_share pathlet_runtime pathlet_data pathlet_sdk_fingerprint pathlet_app_support
+allowed="pathlet pathlet_cli pathlet_share pathlet_runtime pathlet_base pathlet_data pathlet_sdk_fingerprint pathlet_app_support
   pathlet_bench pathlet_quality"
 passes=""
 for f in "$SRC"/passes/*/CMakeLists.txt; do

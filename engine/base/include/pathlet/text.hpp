@@ -1,5 +1,5 @@
 // Text helpers of the SDK, for messages: lists and "did you mean". Passes may use them for
-// their own errors; the engine's other text helpers (engine/data/util/text.hpp) build on these.
+// their own errors; the engine's other text helpers (engine/base/util/text.hpp) sit beside them.
 #pragma once
 
 #include <string>

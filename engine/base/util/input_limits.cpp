@@ -1,4 +1,4 @@
-#include "limits.hpp"
+#include "input_limits.hpp"
 
 #include <cstdlib>
 #include <string>

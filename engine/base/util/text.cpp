@@ -1,6 +1,6 @@
 #include "util/text.hpp"
 
-#include "io/limits.hpp"
+#include "util/input_limits.hpp"
 
 #include <pathlet/scene.hpp>
 

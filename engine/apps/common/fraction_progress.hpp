@@ -2,7 +2,7 @@
 // shows it with the engine's progress bar (a \r line on a terminal, plain lines otherwise).
 #pragma once
 
-#include "progress.hpp"
+#include "common/progress.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-namespace pathlet::cli {
+namespace pathlet {
 
 class FractionProgress {
 public:
@@ -29,4 +29,4 @@ private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace pathlet::cli
+}  // namespace pathlet

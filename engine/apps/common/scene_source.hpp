@@ -1,5 +1,5 @@
-// What data to load and loading it: the data options of a command (common_options.hpp's
-// SceneOptions), an experiment's data set and the Python module all name their data this way.
+// What data to load and loading it: the data options of a command (cli's SceneOptions), an
+// experiment's data set (bench) and the Python module all name their data this way.
 #pragma once
 
 #include "io/pathline_io.hpp"
@@ -9,10 +9,6 @@
 #include <string>
 
 namespace pathlet {
-struct TimeRange;
-}
-
-namespace pathlet::cli {
 
 struct SceneSource {
     std::string data;             // pathline file; "" = the built-in phantom
@@ -26,9 +22,4 @@ struct SceneSource {
 // draw after repair is a DataError naming the file and what the repair dropped.
 Scene load_scene(const SceneSource& src, bool quiet);
 
-// A time the user gave that reaches outside the data's time span would render frames with
-// nothing in them: InputError (exit 2) naming what was given and the data's span, unless
-// `allow_empty` (--allow-empty-frames). Data without time takes any time.
-void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty);
-
-}  // namespace pathlet::cli
+}  // namespace pathlet

@@ -1,9 +1,6 @@
-#include "scene_args.hpp"
+#include "common/scene_source.hpp"
 
-#include "args.hpp"
-#include "renderer.hpp"
-
-#include "fraction_progress.hpp"
+#include "common/fraction_progress.hpp"
 #include "io/mesh_io.hpp"
 #include "io/pathline_io.hpp"
 #include "io/units.hpp"
@@ -11,10 +8,9 @@
 #include "util/text.hpp"
 #include <pathlet/text.hpp>
 
-#include <algorithm>
 #include <cstdio>
 
-namespace pathlet::cli {
+namespace pathlet {
 
 Scene load_scene(const SceneSource& src, bool quiet) {
     Scene scene;
@@ -55,19 +51,4 @@ Scene load_scene(const SceneSource& src, bool quiet) {
     return scene;
 }
 
-void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty) {
-    if (allow_empty || scene.lines.timeless) return;
-    const double t0 = scene.lines.time_min(), t1 = scene.lines.time_max();
-    const double slack = 1e-6 * std::max(1.0, t1 - t0);
-    const std::vector<double> times = t.times();
-    const double first = times.front(), last = times.back();
-    if (first >= t0 - slack && last <= t1 + slack) return;
-    char span[160];
-    std::snprintf(span, sizeof span, "%g..%g s", t0, t1);
-    const std::string what = times.size() == 1 ? "is outside" : "reaches outside";
-    throw InputError("--time " + given + " " + what + " the data's time span, " + span + " (" + scene.source +
-                     "): its frames would be empty; give a time within " + span +
-                     ", or --allow-empty-frames to render them anyway");
-}
-
-}  // namespace pathlet::cli
+}  // namespace pathlet

@@ -1,6 +1,7 @@
 // Caps on what a file may declare, checked before anything is allocated. Each has a
 // documented default and an environment variable for a user with a genuinely large file
-// (README, "Limits on input files").
+// (README, "Limits on input files"). On the ground floor because the JSON reader of
+// util/text.hpp needs them too; in namespace io, beside the readers that enforce the rest.
 #pragma once
 
 #include <cstddef>

@@ -2,10 +2,10 @@
 // pointers, and JSON files read with the limits every input file gets. One copy of each, so a
 // fix (a quote inside an argument, a file too deep) reaches every caller.
 //
-// Lists in messages and "did you mean" (join, closest_match, did_you_mean) are the SDK's,
-// <pathlet/text.hpp>: the ground floor every layer builds on (std only), so passes, the SDK and
-// the engine share one copy. This header stands on its own and does not re-export it; a file
-// that uses those includes <pathlet/text.hpp> itself.
+// Lists in messages and "did you mean" (join, closest_match, did_you_mean) are in
+// <pathlet/text.hpp>, installed with the SDK, so passes, the SDK and the engine share one copy.
+// This header stands on its own and does not re-export it; a file that uses those includes
+// <pathlet/text.hpp> itself.
 #pragma once
 
 #include <nlohmann/json.hpp>
