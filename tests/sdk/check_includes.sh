@@ -63,7 +63,7 @@ for f in engine/sdk/src/*.cpp engine/sdk/src/*.hpp engine/lines/src/*.cpp engine
     esac
   done <"$f"
 done
-# The ground floor (issue 41): the SDK's CPU-only headers every layer builds on (text.hpp,
+# The ground floor: the SDK's CPU-only headers every layer builds on (text.hpp,
 # scene.hpp) and the engine's file and text utilities (engine/data/util) include only system and
 # third-party headers, nothing of a layer above them.
 for f in engine/sdk/include/pathlet/text.hpp engine/sdk/include/pathlet/scene.hpp engine/data/util/*.hpp; do
