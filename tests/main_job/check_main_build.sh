@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/main.sh builds only what its render runs (issue 35): its build step, run on this built
+# scripts/main.sh builds only what its render runs: its build step, run on this built
 # tree without configuring, names in its log (BUILD/build.log, "Built target X") the command,
 # the plugins and the share folder, and nothing that is not on their allow-list (no test,
 # benchmark, fuzzer, test fixture or Python module).
