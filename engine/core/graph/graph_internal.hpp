@@ -74,6 +74,9 @@ std::vector<std::vector<int>> pass_dependencies(const GraphIndex& idx);
 
 // The checks of validate_graph over a built index.
 void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags);
+// Values that must agree: parameter ranges and what a pass shares with an input's writer
+// (graph_agree.cpp).
+void check_agreement(const GraphIndex& idx, std::vector<Diagnostic>& diags);
 
 // The type of pass `p` of `g` (of registry type `t`): with the parameters its hook files declare
 // (hook_params.hpp). On a problem with a hook, `err` says what (and the pointer where) and the
