@@ -3,6 +3,7 @@
 // the longest side, two empty voxels of margin), cleared, then every segment of the window
 // splatted by line_density.comp. The volume is a storage buffer (layout: the kit's
 // line_density.glsl) that volume_ao, or a line pass through line_volume_ao.glsl, reads.
+#include <pathlet/gl_limits.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
@@ -64,6 +65,8 @@ public:
                                      std::to_string(bytes_for(voxels) >> 20) + " MiB), beyond the cap of " +
                                      std::to_string(kMaxVoxels) + " voxels (" + std::to_string(bytes_for(kMaxVoxels) >> 20) +
                                      " MiB); lower grid");
+        pathlet::check_storage_block(bytes_for(voxels), "line_density's grid of " + std::to_string(voxels) + " voxels",
+                                     "at grid " + std::to_string(grid), "lower grid");
         voxels_ = voxels;
         h_ = h;
         origin_ = lo - float(kMargin) * h;
