@@ -2,6 +2,7 @@
 // (pathlet/gpu_fence.hpp): copies made without polling stay in flight, nothing is handed out
 // before its fence may have signalled, and then every copy is, in order, with its tag.
 #include "frame_capture.hpp"
+#include "renderer.hpp"
 #include "frames/readback_ring.hpp"
 #include "profiler/profiler.hpp"
 
@@ -11,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pathlet {
@@ -205,6 +208,80 @@ TEST(ReadbackRing, PollTakesWhatIsReadyOnceTheLatencyHasPassed) {
     EXPECT_EQ(done, (std::vector<int>{0, 1, 2, 3, 4, 5}));
 }
 
+
+// The viewer's resizes: a copy size no longer used leaves no buffers behind. Two sizes
+// alternate per frame for a while, then only the second is copied: the ring holds the second
+// size's buffers alone, as many as frames in flight, never one per size ever copied.
+TEST(ReadbackRing, BuffersOfASizeNoLongerCopiedAreFreed) {
+    Latency latency(0);
+    test_runtime();
+    GLuint tex[3] = {0, 0, 0};
+    const int widths[3] = {4, 8, 16};
+    glCreateTextures(GL_TEXTURE_2D, 3, tex);
+    for (int i = 0; i < 3; ++i) glTextureStorage2D(tex[i], 1, GL_RGBA8, widths[i], 2);
+    const size_t depth = 2;
+    ReadbackRing ring(depth);
+    size_t handed = 0;
+    auto frame = [&](int i) {
+        advance_gpu_frame();
+        ring.copy(tex[i], widths[i], 2, GL_RGBA, GL_UNSIGNED_BYTE, 4, [&](PackedPixels&&) { ++handed; }, "test");
+        ring.end_frame();
+        ring.poll();
+    };
+    for (int f = 0; f < 12; ++f) frame(f % 3);  // three sizes, as a window resized back and forth
+    const size_t mixed = ring.buffers();
+    for (int f = 0; f < 12; ++f) frame(2);
+    ring.drain();
+    EXPECT_EQ(handed, 24u) << "every copy handed over";
+    EXPECT_GE(mixed, 3u) << "the three sizes each had buffers";
+    EXPECT_LE(ring.buffers(), depth + 1) << "only the size still copied keeps buffers (" << mixed << " before)";
+    glDeleteTextures(3, tex);
+}
+
+// A GPU that never signals: a blocking wait gives up after the limit, naming the frame its fence
+// was issued in; inside a pass the executor adds the pass's name.
+TEST(GpuFence, AWaitOnAGpuThatNeverSignalsGivesUpNamingTheFrameAndThePass) {
+    struct Hung {
+        Hung() {
+            set_gpu_wait_limit(0.3);
+            set_simulated_gpu_hang(true);
+        }
+        ~Hung() {
+            set_simulated_gpu_hang(false);
+            set_gpu_wait_limit(0);
+        }
+    };
+    test_runtime();
+    {
+        GpuFence f = GpuFence::insert();
+        const uint64_t issued = f.frame();
+        Hung hung;
+        try {
+            f.wait();
+            ADD_FAILURE() << "a wait on a GPU that never signals returned";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("frame " + std::to_string(issued)), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("PATHLET_GPU_WAIT_LIMIT"), std::string::npos) << e.what();
+        }
+    }
+    // fill_list reads its node count back without waiting; the end of the run waits for it.
+    RenderOptions opt;
+    opt.graph_path = std::string(PATHLET_SOURCE_DIR) + "/graphs/variant2_oit.json";
+    opt.size = {64, 36};
+    opt.time.start = 2.0;
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    Hung hung;
+    try {
+        render(test_runtime(), small_phantom_scene(), opt);
+        ADD_FAILURE() << "a render on a GPU that never signals finished";
+    } catch (const std::exception& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("pass 'fill_list'"), std::string::npos) << m;
+        EXPECT_NE(m.find("did not finish the work of frame"), std::string::npos) << m;
+    }
+}
 
 // The viewer's timing: ready timer queries are collected without waiting, the rest carry over.
 TEST(Profiler, CollectReadyNeverWaitsAndFramesInFlightCarryOver) {
