@@ -93,6 +93,9 @@ public:
         const Header head{{dims_[0], dims_[1], dims_[2], 1},
                           {origin_.x, origin_.y, origin_.z, h_},
                           {float(t0), float(t1), 0.0f, 0.0f}};
+        // The readers since the last rebuild (volume_ao, a list resolve) had the volume bound as
+        // a storage block: their access lands before this update only behind the barrier.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glNamedBufferSubData(buf.id, 0, sizeof head, &head);
         const GLuint zero = 0;
         glClearNamedBufferSubData(buf.id, GL_R32UI, GLintptr(sizeof head), GLsizeiptr(4 * voxels_), GL_RED_INTEGER,
