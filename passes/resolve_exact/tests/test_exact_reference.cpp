@@ -232,8 +232,8 @@ TEST(ExactReference, AgreesWithHalosPushedPastTheFarPlane) {
     const Scene& s = study_phantom();
     for (const std::string window : {"window=1", "window=0"}) {
         const Ties ties = ties_in_lists(s, {640, 360}, 9.0, {window, "fill_list.halo_depth=1"});
-        EXPECT_GT(ties.at_far, ties.covered / 10) << window << ": the halos should reach the far plane";
-        EXPECT_GT(ties.one_line_repeated, ties.covered / 100) << window;
+        EXPECT_GT(ties.at_far, ties.covered / 3) << window << ": the halos should reach the far plane";
+        EXPECT_GT(ties.one_line_repeated, 50u) << window << ": pixels where one line has two fragments at 1.0";
         expect_agree(s, {640, 360}, 9.0, {window}, "phantom, halos past the far plane, " + window, "",
                      {"fill_list.halo_depth=1"}, {"depth_peel.halo_depth=1"});
     }
@@ -243,21 +243,31 @@ TEST(ExactReference, AgreesWithHalosPushedPastTheFarPlane) {
 // tube's bulge in front of the near plane clamps their linear depth to exactly 0.0, many
 // fragments of one line at one depth in every pixel near the plane.
 TEST(ExactReference, AgreesWhereLinesCrossTheNearPlane) {
+    // The camera at z = 20 looks down -z; the data's bounding sphere holds it, so the near plane
+    // is 1 % of the sphere's radius (about 0.22) in front of it. Lines converge on the eye and end
+    // 0.15 to 0.38 in front of it, just off the axis: their last segments fill the picture, and
+    // the tube's bulge (half a width, 0.11) takes their fragments in front of the near plane.
+    // Their last points zigzag by less than the width, so a line's segments overlap there.
     std::vector<StraightLine> lines;
-    for (int i = 0; i < 24; ++i) {  // a cone of lines converging on the camera's axis behind it
-        const float a = 0.2618f * float(i), r = 0.04f * float(1 + i % 4);
+    for (int i = 0; i < 24; ++i) {
+        const float a = 0.2618f * float(i), r = 0.01f * float(1 + i % 4);
         lines.push_back({.from = {6.0f * std::cos(a), 6.0f * std::sin(a), -20.0f},
-                         .to = {r * std::cos(a), r * std::sin(a), 24.0f},
+                         .to = {r * std::cos(a), r * std::sin(a), 20.0f - (0.15f + 0.01f * float(i))},
                          .speed = 1.0f + 0.25f * float(i % 8)});
     }
-    const Scene scene = straight_lines_scene(lines);
+    Scene scene = straight_lines_scene(lines);
+    for (const LineRange& l : scene.lines.lines)
+        for (uint32_t k = l.count - 8; k < l.count; ++k) scene.lines.position[l.first + k].x += (k % 2 ? 0.03f : -0.03f);
     const std::string cam = write_camera_down_z(test_scratch_dir("pathlet_exact") + "/near_cam.json", {0, 0, 0}, 20, 40);
-    const Ties ties = ties_in_lists(scene, {320, 180}, 5.0,
-                                    {"window=0", "color_hook=uniform_fade.glsl", "lod=0", "fill_list.opacity=0.3"}, cam);
+    const std::vector<std::string> sets = {"window=0", "color_hook=uniform_fade.glsl", "tail_fade=0", "head_fade=0",
+                                           "lod=0"};
+    std::vector<std::string> lists = sets;
+    lists.push_back("fill_list.opacity=0.3");
+    const Ties ties = ties_in_lists(scene, {320, 180}, 5.0, lists, cam);
     EXPECT_GT(ties.at_near, ties.covered / 20) << "fragments in front of the near plane should be clamped to 0";
-    EXPECT_GT(ties.one_line_repeated, ties.covered / 20) << "one line should have several fragments at depth 0";
-    expect_agree(scene, {320, 180}, 5.0, {"window=0", "color_hook=uniform_fade.glsl", "lod=0"},
-                 "lines through the near plane", cam, {"fill_list.opacity=0.3"}, {"depth_peel.opacity=0.3"});
+    EXPECT_GT(ties.one_line_repeated, ties.covered / 100) << "one line should have several fragments at depth 0";
+    expect_agree(scene, {320, 180}, 5.0, sets, "lines through the near plane", cam, {"fill_list.opacity=0.3"},
+                 {"depth_peel.opacity=0.3"});
 }
 
 // Lists far longer than resolve_list's cap and than the sort block: every fragment counts, so
