@@ -35,7 +35,8 @@ CliRun quality(const std::string& args) {
                                                                              {"share", "share over 8/255 "},
                                                                              {"flip", "flip "},
                                                                              {"flicker", "flicker vs reference "}})
-            if (s.rfind(prefix, 0) == 0) r.v[key] = std::stod(s.substr(prefix.size()));
+            if (s.rfind(prefix, 0) == 0 && s.compare(prefix.size(), 3, "n/a") != 0)
+                r.v[key] = std::stod(s.substr(prefix.size()));
         if (const size_t all = s.find("all pixels "); s.rfind("flip ", 0) == 0 && all != std::string::npos)
             r.v["flip_all"] = std::stod(s.substr(all + 11));
     }

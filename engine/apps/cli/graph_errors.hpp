@@ -14,12 +14,11 @@ inline void print_graph_notes(const GraphFile& g) {
     for (const auto& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
 }
 
-// Prints the report to stderr; returns 2: a graph that cannot run as given (its file, a --set)
-// is the user's input to fix, like a graph that is not there, before any frame is drawn.
+// Prints the report to stderr; returns 1, the exit status of failed work.
 inline int report_graph_error(const GraphError& e, const Runtime& rt) {
     for (const auto& d : e.diagnostics) std::fprintf(stderr, "%s\n", d.str().c_str());
     std::fprintf(stderr, "%s", rt.plugin_problems_note().c_str());
-    return 2;
+    return 1;
 }
 
 }  // namespace pathlet::cli

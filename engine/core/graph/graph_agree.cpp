@@ -40,7 +40,8 @@ void check_ranges(const GraphFile& g, const PassDecl& p, const PassTypeInfo& t, 
         const json a = value_of(g, p, lo), b = value_of(g, p, *hi);
         if (!a.is_number() || !b.is_number()) continue;
         const double x = a.get<double>(), y = b.get<double>();
-        if (x <= lo.automatic_at_or_below || y <= hi->automatic_at_or_below || x <= y) continue;
+        // An automatic end (the lower end's option speaks for the range) is not compared.
+        if (x <= lo.automatic_at_or_below || y <= lo.automatic_at_or_below || x <= y) continue;
         diags.push_back({g.path, where(p, p.params.contains(lo.name) ? lo.name : hi->name),
                          "pass '" + p.name + "': " + lo.name + " = " + shown(a) + " is above " + hi->name + " = " +
                              shown(b) + "; " + lo.name + " must not exceed " + hi->name});
