@@ -33,6 +33,27 @@ void oit_depth_group_composite(inout vec3 rgb, inout float t, vec4 group) {
     t *= through;
 }
 
+// A layer built a fragment at a time (resolve_exact): empty (all zero), one fragment kept as it
+// is (its opacity with the sign bit set, so an opacity of 0 is told from an empty layer), or the
+// sum of the terms of two or more. A lone fragment, most layers, then costs no logarithm or
+// exponential and is composited as itself (the formula above gives it up to float rounding).
+bool oit_layer_empty(vec4 layer) { return floatBitsToUint(layer.a) == 0u; }
+bool oit_layer_is_one(vec4 layer) { return (floatBitsToUint(layer.a) >> 31) != 0u; }
+vec4 oit_layer_add(vec4 layer, vec4 rgba) {
+    if (oit_layer_empty(layer)) return vec4(rgba.rgb, uintBitsToFloat(floatBitsToUint(rgba.a) | 0x80000000u));
+    if (oit_layer_is_one(layer)) layer = oit_depth_group_term(vec4(layer.rgb, abs(layer.a)));
+    return layer + oit_depth_group_term(rgba);
+}
+void oit_layer_composite(inout vec3 rgb, inout float t, vec4 layer) {
+    if (!oit_layer_is_one(layer)) {
+        oit_depth_group_composite(rgb, t, layer);
+        return;
+    }
+    float a = abs(layer.a);
+    rgb += t * a * layer.rgb;
+    t *= 1.0 - a;
+}
+
 // A colour as the lists' nodes keep it (packUnorm4x8 of the clamped colour), for a technique
 // that composites without storing it (depth peeling).
 vec4 oit_list_stored(vec4 rgba) { return unpackUnorm4x8(packUnorm4x8(clamp(rgba, 0.0, 1.0))); }

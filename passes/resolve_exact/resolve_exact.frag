@@ -28,7 +28,7 @@ layout(r32ui) uniform readonly uimage2D u_heads;  // the pins, by declaration
 uniform usamplerBuffer u_nodes;                   // the pass's view of the `nodes` buffer
 #include "oit_block_sort.glsl"
 layout(rgba32f) uniform image2D u_carry;          // colour composited so far, transmittance left
-layout(rgba32f) uniform image2D u_layer;          // the open layer's sum (oit_depth_group_term); a = 0: none
+layout(rgba32f) uniform image2D u_layer;          // the open layer (oit_layer_add); zero: none
 layout(rgba32ui) uniform uimage2D u_last;         // the last fragment taken: depth bits, id, colour, node
 layout(r32ui) uniform uimage2D u_state;           // STATE_*
 layout(std430, binding = STATS_BINDING) buffer OitExactStats {
@@ -65,7 +65,7 @@ void main() {
     OitBlockAfter after = first ? kOitBlockStart : OitBlockAfter(true, uintBitsToFloat(last.x), last.y, last.z, last.w);
     vec3 rgb = carry.rgb;
     float t = carry.a;  // transmittance left
-    float layer_depth = after.d;  // of the open layer (layer.a > 0)
+    float layer_depth = after.d;  // of the open layer (when it is not empty)
     uint len = 0u, rounds = 0u, visits = 0u;
     bool cut = false, finished = false;
     while (visits < uint(u_visit_budget)) {
@@ -78,16 +78,16 @@ void main() {
         visits += walked;
         ++rounds;
         for (int k = 0; k < n && t >= u_min_transmittance; ++k) {
-            if (layer.a > 0.0 && oit_block_dep[k] != layer_depth) {  // a deeper fragment closes the layer
-                oit_depth_group_composite(rgb, t, layer);
+            if (!oit_layer_empty(layer) && oit_block_dep[k] != layer_depth) {  // a deeper fragment closes the layer
+                oit_layer_composite(rgb, t, layer);
                 layer = vec4(0.0);
                 if (t < u_min_transmittance) break;
             }
-            layer += oit_depth_group_term(unpackUnorm4x8(oit_block_col[k]));
+            layer = oit_layer_add(layer, unpackUnorm4x8(oit_block_col[k]));
             layer_depth = oit_block_dep[k];
         }
-        if (n < K || cut) {  // the list's end closes the last layer (or a corrupt list ends it)
-            oit_depth_group_composite(rgb, t, layer);
+        if ((n < K || cut) && !oit_layer_empty(layer)) {  // the list's end closes the last layer (or a corrupt list ends it)
+            oit_layer_composite(rgb, t, layer);
             layer = vec4(0.0);
         }
         if (t < u_min_transmittance || n < K || cut) {  // finished, every fragment seen, or a corrupt list
