@@ -528,6 +528,7 @@ py::dict run_reference(const std::string& graph, const std::vector<std::string>&
     for (const quality::ImageMetrics& m : r.per_frame) frames.append(metrics(m));
     d["per_frame"] = frames;
     d["images"] = r.images;
+    d["incomplete_frames"] = r.incomplete_frames;  // of the tested graph (a reference with any is refused)
     return d;
 }
 

@@ -74,6 +74,9 @@ std::vector<std::vector<int>> pass_dependencies(const GraphIndex& idx);
 
 // The checks of validate_graph over a built index.
 void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags);
+// Values that must agree: parameter ranges and what a pass shares with an input's writer
+// (graph_agree.cpp).
+void check_agreement(const GraphIndex& idx, std::vector<Diagnostic>& diags);
 
 // `g` itself when its hooks are resolved, else a copy with them resolved in `copy` (a graph
 // validated or compiled without apply_overrides).

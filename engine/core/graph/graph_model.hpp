@@ -229,6 +229,11 @@ std::vector<std::string> shipped_graph_names();
 // shipped graph (with or without .json). Throws GraphNotFound before anything else is done.
 std::string find_graph_file(const std::string& arg);
 
+// Why `name` cannot be a graph's name ("" when it can): it names the graph's folder in output
+// paths ({graph}, quality --out, the output-folder record), so no '/', backslash, control
+// characters, "." or "..". The parser applies it to "name" and to a file name standing in.
+std::string graph_name_problem(const std::string& name);
+
 // ---- the steps ------------------------------------------------------------------------
 
 // Parses a graph file (comments allowed). Syntax and structure errors -> GraphError.

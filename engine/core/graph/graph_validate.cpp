@@ -231,6 +231,7 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
         error(g.passes[cycle.front()].pointer, "passes form a cycle: " + join(names, " -> ") +
                                                    " (use a history resource and '@prev' to read last frame's result)");
     }
+    check_agreement(idx, diags);
 }
 
 }  // namespace graph_detail

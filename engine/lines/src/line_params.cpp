@@ -51,7 +51,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
         .param_enum("colormap", "green_red", colormaps(),
                     "speed colour map: green_red (study: green slow, yellow, red fast), viridis, coolwarm, grey; or "
                     "direction: RGB = |dx|, |dy|, |dz| of the line's unit tangent (the tractography convention)")
-        .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile")
+        .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile",
+                     {.at_most = "speed_max", .automatic_at_or_below = 0.0})
         .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's 99th percentile")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour of pixels without lines")
         .param_float("lod", 0.1, 0.0, 16.0,

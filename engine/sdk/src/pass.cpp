@@ -302,6 +302,8 @@ ParamDecl ranged(ParamDecl p, double min, double max, ParamOptions o) {
     p.min = min;
     p.max = max;
     p.pixels = o.pixels;
+    p.at_most = o.at_most;
+    p.automatic_at_or_below = o.automatic_at_or_below;
     return p;
 }
 }  // namespace
@@ -360,6 +362,7 @@ PinDecl make_pin(const std::string& name, PinDir dir, PinKind kind, const std::s
     p.optional = o.optional;
     p.mips = o.mips;
     p.scale = o.scale;
+    p.same_params = o.same_params;
     p.doc = doc;
     return p;
 }

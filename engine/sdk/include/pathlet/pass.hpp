@@ -40,6 +40,9 @@ struct ParamDecl {
     // annotates with @param become parameters of the pass instance.
     std::optional<HookRole> hook;
     std::string origin;   // a parameter a hook declared: "file.frag:12"
+    // The lower end of a range whose upper end is the parameter `at_most` (ParamOptions).
+    std::string at_most;
+    double automatic_at_or_below = -std::numeric_limits<double>::infinity();
 
     // Checks and converts a JSON value (ints accepted for floats, "#rrggbb" for colours).
     // Returns an error message, or "" and sets `out`.
@@ -53,6 +56,12 @@ struct ParamOptions {
     // A length in picture pixels (a radius, a band): u_<name> gets it times the render's pixel
     // scale, so `render --ssaa N` looks the same (ints are rounded).
     bool pixels = false;
+    // The lower end of a range whose upper end is the parameter named here: the graph compiler
+    // refuses a value above that one's, naming both (GLSL's clamp(x, lo, hi) is undefined for
+    // lo > hi). Values at or below `automatic_at_or_below` stand for an automatic choice ("<= 0:
+    // the data's") and are not compared.
+    std::string at_most = {};
+    double automatic_at_or_below = -std::numeric_limits<double>::infinity();
 };
 
 enum class PinKind { Texture, Buffer };
@@ -66,6 +75,12 @@ struct PinOptions {
     int mips = 1;           // outputs and internal textures: mip levels; 0 = full chain
     float scale = 1.0f;     // outputs and internal textures: size = scale x output size
     bool persistent = false;  // internal textures and buffers: content kept across frames (not pooled)
+    // Inputs: parameters this pass shares with what produced the input, which must have the same
+    // value in both (the two draw the same fragments, or one reads what the other wrote in a
+    // form both must know): each is compared with the nearest pass up the input's chain of
+    // writers that declares it, and the graph compiler refuses a graph where they differ,
+    // naming both passes. "*": every parameter of this pass.
+    std::vector<std::string> same_params = {};
 };
 // The size of a buffer output: {.bytes = 1024}, {.bytes_per_pixel = 16}, or decided by the
 // pass's resolved parameters, {.from_params = [](const json& p) { return ...; }} (a volume's grid).
@@ -89,6 +104,7 @@ struct PinDecl {
     bool internal = false;       // the pass's own texture or buffer (an output no graph may bind): the
                                  // engine allocates and pools it like any transient, the pass uses it by name
     bool persistent = false;     // internal: kept across frames, never pooled
+    std::vector<std::string> same_params;  // inputs: PinOptions::same_params
     std::string doc;
     // Buffer outputs sized by the pass's resolved parameters (e.g. a volume's grid); takes
     // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
