@@ -126,7 +126,9 @@ pathlet::PassTypeInfo depth_peel_type() {
         .internal_texture("layer_id", "depth32f", "line id / 2^24 of this layer's fragment (the select draw's depth)")
         .internal_texture("layer", "rgba8", "this layer's fragment colour, as the lists store it")
         .internal_texture("accum", "rgba32f", "colour composited so far (premultiplied) and the transmittance left")
-        .internal_texture("key", "rg32ui", "the last peeled fragment per pixel: depth bits and line id");
+        .internal_texture("key", "rg32ui", "the last peeled fragment per pixel: depth bits and line id")
+        .waits_for_gpu("an exact reference: after each layer it reads the layer's occlusion query, to stop at the "
+                       "first empty layer");
     return b.make<DepthPeel>();
 }
 
