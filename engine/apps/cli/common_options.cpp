@@ -78,9 +78,10 @@ void declare_camera(Args& a, std::string& file) {
 }
 
 void declare_timing(Args& a, TimingBackend& timing) {
-    a.option("timing", timing, "auto|gpu|finish",
-             "pass timing: GL timestamp queries (gpu) or glFinish-bracketed CPU clock (finish); auto: finish on "
-             "llvmpipe, timestamps on a GPU");
+    a.option("timing", timing, "auto|gpu|finish|cpu",
+             "pass timing: GL timestamp queries (gpu), glFinish-bracketed CPU clock (finish) or process CPU time "
+             "(cpu: llvmpipe's work, steady on a busy machine; no measure of a GPU); auto: finish on llvmpipe, "
+             "timestamps on a GPU");
 }
 
 }  // namespace pathlet::cli
