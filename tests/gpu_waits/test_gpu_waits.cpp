@@ -167,6 +167,18 @@ TEST(GpuWaits, AWaitDeclaredWithAParameterThatIsNoBoolIsRefused) {
     EXPECT_NO_THROW(reg.add(PassTypeBuilder("waiter", "test").param_bool("b", false, "b").waits_for_gpu("why", "b").make<Idle>()));
 }
 
+TEST(GpuWaits, PassesDescribeSaysWhichPassTypesWaitAndWhy) {
+    const PassRegistry& reg = rt().registry;
+    for (const char* type : {"depth_peel", "resolve_exact", "fill_list"}) {
+        ASSERT_NE(reg.find(type), nullptr) << type;
+        const std::string d = reg.find(type)->describe();
+        EXPECT_NE(d.find("waits for the GPU in the frame loop"), std::string::npos) << d;
+        EXPECT_NE(d.find(reg.find(type)->gpu_wait_reason), std::string::npos) << d;
+    }
+    EXPECT_NE(reg.find("fill_list")->describe().find("frame loop (with never_drop): never_drop"), std::string::npos);
+    EXPECT_EQ(reg.find("lineao")->describe().find("waits for the GPU"), std::string::npos);
+}
+
 // Every shipped graph, four frames: a pass that waits after its first frame fails, unless its type
 // declares the wait (then it must still wait: the declaration is no stale excuse).
 TEST(GpuWaits, NoShippedGraphWaitsInTheFrameLoopButTheReferencesThatDeclareIt) {
