@@ -93,7 +93,7 @@ export PATHLET_PLUGIN_PATH=  # each build's own plugins only
 renderer=$("${bin[new]}" info --gl 2>/dev/null | sed -n 's/^GL_RENDERER //p')
 timing=(--timing auto) run_clock=wall timing_note="GL timestamps (medians), whole runs by the wall clock"
 if [[ ${renderer,,} =~ llvmpipe|softpipe|swrast|swiftshader ]]; then
-  if "${bin[base]}" bench --help 2>&1 | grep -q 'auto|gpu|finish|cpu'; then
+  if [[ $("${bin[base]}" bench --help 2>&1) == *'auto|gpu|finish|cpu'* ]]; then
     timing=(--timing cpu) run_clock=cpu timing_note="process CPU time (bench --timing cpu; whole runs: user + system)"
   else
     timing=(--timing finish)
