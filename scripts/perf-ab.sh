@@ -7,8 +7,9 @@
 # (its `git archive`, the runtime only, through ccache when it is on PATH; kept, so the next run
 # against it builds nothing: remove build/perf-ab/ to free the space). This tree, uncommitted
 # changes included, is built in build/ (target pathlet_runtime). Then both run the same cases on
-# the study phantom, interleaved: each round runs every case with one build right after the
-# other (which one first alternates), so load on a busy machine hits both alike:
+# the study phantom, interleaved, so load on a busy machine hits both alike: each round runs
+# every case with both builds at once (llvmpipe, timed by CPU time: below) or one right after the
+# other, which one first alternating (a GPU, timed by the clock):
 #   v1, v2, v3, v4      each shipped variant (variant1_lineao, variant2_oit, variant3_geomfade,
 #                       variant4_opacity) with its 1 s window, `pathlet bench` at t = 9 s
 #   ... every line      the same with window=0; variant 1 also with cull=false
@@ -26,25 +27,27 @@
 #   --size WxH     output size (default 960x540)
 #   --frames N     measured frames per bench case (default 5, after 2 warm-up frames)
 #   --threshold T  see above; --all-passes lists every pass
+#   --keep DIR     keep every run's results in DIR (runs.tsv, as the table reads it, and the logs)
 # Exits 0 when the table is printed (whatever it says), 2 on bad usage, 1 when a build or run fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 
-usage() { sed -n '2,31p' "$0"; }
+usage() { sed -n '2,33p' "$0"; }
 die() { echo "perf-ab: $*" >&2; exit 2; }
 positive() { [[ $2 =~ ^[0-9]+$ ]] && (($2 >= $3)) || die "$1 '$2': expected a whole number >= $3"; }
 
-base_arg="" rounds=3 size=960x540 frames=5 threshold=0.15 all_passes=()
+base_arg="" rounds=3 size=960x540 frames=5 threshold=0.15 all_passes=() keep=""
 while (($#)); do
   case "$1" in
-    --rounds|--size|--frames|--threshold) (($# >= 2)) || die "$1 needs a value (see --help)" ;;&
+    --rounds|--size|--frames|--threshold|--keep) (($# >= 2)) || die "$1 needs a value (see --help)" ;;&
     --rounds) positive --rounds "$2" 2; rounds=$2; shift 2 ;;
     --size) [[ $2 =~ ^[1-9][0-9]*x[1-9][0-9]*$ ]] || die "--size '$2': expected WxH, e.g. 960x540"; size=$2; shift 2 ;;
     --frames) positive --frames "$2" 1; frames=$2; shift 2 ;;
     --threshold) [[ $2 =~ ^[0-9]*\.?[0-9]+$ && $2 =~ [1-9] ]] || die "--threshold '$2': expected a fraction > 0, e.g. 0.15"
                  threshold=$2; shift 2 ;;
     --all-passes) all_passes=(--all-passes); shift ;;
+    --keep) [[ ! -e $2 ]] || die "--keep '$2': already there (give a new folder)"; keep=$(realpath -m "$2"); shift 2 ;;
     -h|--help) usage; exit 0 ;;
     -*) die "unknown option '$1' (see --help)" ;;
     *) [[ -z $base_arg ]] || die "one BASE only (got '$base_arg' and '$1')"; base_arg=$1; shift ;;
@@ -162,7 +165,13 @@ start=$(date +%s)
 for ((r = 1; r <= rounds; ++r)); do
   for c in "${!cases[@]}"; do
     if (((r + c) % 2)); then order=(new base); else order=(base new); fi
-    for b in "${order[@]}"; do measure "$r" "$c" "$b"; done
+    if [[ $run_clock == cpu ]]; then  # at once: the machine's load in the same seconds on both
+      measure "$r" "$c" base & pids=($!)
+      measure "$r" "$c" new & pids+=($!)
+      for p in "${pids[@]}"; do wait "$p" || exit 1; done
+    else
+      for b in "${order[@]}"; do measure "$r" "$c" "$b"; done
+    fi
   done
   echo "perf-ab: round $r of $rounds done ($(($(date +%s) - start)) s)" >&2
 done
@@ -173,4 +182,8 @@ echo "perf-ab: new = this tree ($(git rev-parse --short HEAD)$dirty), base = $sh
   "$rounds rounds, $frames frames a bench case; ${renderer:-unknown renderer}, $(nproc) cores, load average $load0" \
   "at the start, $(cut -d' ' -f1 /proc/loadavg) at the end; $(($(date +%s) - start)) s"
 echo "perf-ab: timed by $timing_note"
+if [[ -n $keep ]]; then  # the results with runs.tsv pointing at them
+  mkdir -p "$(dirname "$keep")" && cp -r "$work" "$keep.tmp" && sed -i "s#$work#$keep#" "$keep.tmp/runs.tsv" &&
+    mv "$keep.tmp" "$keep" && echo "perf-ab: every run kept in $keep" >&2
+fi
 "$python" scripts/perf_ab_table.py "$runs" --threshold "$threshold" "${all_passes[@]}"

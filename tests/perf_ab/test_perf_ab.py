@@ -116,6 +116,7 @@ with tempfile.TemporaryDirectory() as work:
         (["--bogus"], "unknown option '--bogus'"),
         (["no-such-commit-xyz"], "BASE 'no-such-commit-xyz' is not a commit of this repository"),
         (["HEAD", "HEAD~1"], "one BASE only"),
+        (["--keep", work], f"--keep '{work}': already there"),
     ]:
         p = subprocess.run([SCRIPT, *args], capture_output=True, text=True, cwd=work)
         check(p.returncode == 2 and f"perf-ab: {message}" in p.stderr,
