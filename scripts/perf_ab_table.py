@@ -8,10 +8,12 @@ RUNS.tsv has one line per measurement: ROUND, CASE, BUILD (base or new) and eith
 results.json (its first run: the median of every pass and of the frame over the measured frames)
 or the seconds of a case timed as a whole (the render loop, start-up: wall clock or CPU time).
 
-Per case and pass, each round gives the ratio new/base of the two medians measured one right
-after the other. SLOWER: every round's ratio above 1 + T and the medians (over the rounds) more
-than MS apart; faster: every ratio below 1 / (1 + T), likewise. Anything else is noise on a busy
-machine, however large one round's ratio. Rows: every case's frame (or run), and its passes that
+Per case and pass, each round gives the ratio new/base of the two medians measured in the same
+minute. SLOWER: in every round the ratio is above 1 + T and the new run's fastest frame is slower
+than the base run's slowest (their frames apart), and the medians over the rounds are more than MS
+apart; faster likewise the other way. Anything else is noise on a busy machine, however large one
+round's ratio (a small pass's ratio moves by 20-30 % from run to run, and three rounds in a row
+can agree on that by chance; their frames then overlap). Rows: every case's frame (or run), and its passes that
 take at least 5 % of the base frame (all with --all-passes); a flagged pass is always shown.
 """
 import argparse
@@ -24,8 +26,8 @@ RUN = "(run)"
 SHOWN_SHARE = 0.05  # passes below this share of the frame are listed only with --all-passes
 
 
-def medians_of(results_path):
-    """{pass or FRAME: median ms over the measured frames} of a bench results.json's first run."""
+def samples_of(results_path):
+    """{pass or FRAME: [ms of every measured frame]} of a bench results.json's first run."""
     with open(results_path) as f:
         report = json.load(f)
     runs = report.get("runs") or []
@@ -39,11 +41,11 @@ def medians_of(results_path):
         for name, ms in (fr.get("passes") or {}).items():
             if isinstance(ms, (int, float)):
                 samples.setdefault(name, []).append(ms)
-    return {name: statistics.median(v) for name, v in samples.items() if v}
+    return {name: v for name, v in samples.items() if v}
 
 
 def read_runs(path):
-    """{case: {round: {build: {pass: ms}}}} and the cases in their first order."""
+    """{case: {round: {build: {pass: [ms]}}}} and the cases in their first order."""
     data, order = {}, []
     with open(path) as f:
         for number, line in enumerate(f, 1):
@@ -55,21 +57,23 @@ def read_runs(path):
                 raise ValueError(f"{path}:{number}: expected ROUND, CASE, base|new, FILE|SECONDS separated by tabs")
             rnd, case, build, what = fields
             try:
-                times = {RUN: float(what) * 1000.0}
+                times = {RUN: [float(what) * 1000.0]}
             except ValueError:
-                times = medians_of(what)
+                times = samples_of(what)
             if case not in data:
                 order.append(case)
             data.setdefault(case, {}).setdefault(rnd, {})[build] = times
     return data, order
 
 
-def verdict(ratios, base_ms, new_ms, threshold, min_ms):
-    if len(ratios) < 2 or abs(new_ms - base_ms) <= min_ms:
+def verdict(pairs, base_ms, new_ms, threshold, min_ms):
+    """pairs: (base frames, new frames) of every round."""
+    if len(pairs) < 2 or abs(new_ms - base_ms) <= min_ms:
         return ""
-    if all(r > 1.0 + threshold for r in ratios):
+    ratios = [statistics.median(n) / statistics.median(b) for b, n in pairs]
+    if all(r > 1.0 + threshold for r in ratios) and all(min(n) > max(b) for b, n in pairs):
         return "SLOWER"
-    if all(r < 1.0 / (1.0 + threshold) for r in ratios):
+    if all(r < 1.0 / (1.0 + threshold) for r in ratios) and all(max(n) < min(b) for b, n in pairs):
         return "faster"
     return ""
 
@@ -83,13 +87,15 @@ def rows(data, order, threshold, min_ms, all_passes):
             continue
         names = set.intersection(*(set(r["base"]) & set(r["new"]) for r in rounds))
         whole = RUN if RUN in names else FRAME
-        base_whole = statistics.median(r["base"][whole] for r in rounds) if whole in names else 0.0
+        med = lambda r, build, name: statistics.median(r[build][name])
+        base_whole = statistics.median(med(r, "base", whole) for r in rounds) if whole in names else 0.0
         ordered = [whole] + sorted(n for n in names if n != whole)
         for name in ordered:
-            base = statistics.median(r["base"][name] for r in rounds)
-            new = statistics.median(r["new"][name] for r in rounds)
-            ratios = [r["new"][name] / r["base"][name] for r in rounds if r["base"][name] > 0]
-            v = verdict(ratios, base, new, threshold, min_ms) if ratios else ""
+            base = statistics.median(med(r, "base", name) for r in rounds)
+            new = statistics.median(med(r, "new", name) for r in rounds)
+            pairs = [(r["base"][name], r["new"][name]) for r in rounds if med(r, "base", name) > 0]
+            ratios = [statistics.median(n) / statistics.median(b) for b, n in pairs]
+            v = verdict(pairs, base, new, threshold, min_ms) if pairs else ""
             shown = name == whole or all_passes or v or (base_whole > 0 and base >= SHOWN_SHARE * base_whole)
             if shown:
                 out.append((case, name, base, new, ratios, v))
@@ -123,8 +129,9 @@ def main(argv):
         print(f"{case:<34} {name:<22} {base:>9.1f} {new:>9.1f} {ratio_range(ratios):>21}  {v}")
     slower = sum(1 for r in table if r[5] == "SLOWER")
     faster = sum(1 for r in table if r[5] == "faster")
-    print(f"{slower} slower, {faster} faster: flagged only where every round's ratio is beyond "
-          f"{1 + a.threshold:.2f} (or below {1 / (1 + a.threshold):.2f}) and the medians over {a.min_ms:g} ms apart")
+    print(f"{slower} slower, {faster} faster: flagged only where, in every round, the ratio is beyond "
+          f"{1 + a.threshold:.2f} (or below {1 / (1 + a.threshold):.2f}) and the two runs' frames are apart, and the "
+          f"medians are over {a.min_ms:g} ms apart")
     return 0
 
 
