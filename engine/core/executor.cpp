@@ -175,6 +175,7 @@ void Executor::setup() {
 
     passes_.clear();
     contexts_.clear();
+    gpu_waits_.reset(cg_.passes.size());
     for (size_t i = 0; i < cg_.passes.size(); ++i) {
         const CompiledPass& cp = cg_.passes[i];
         PassHost& host = *this;
@@ -212,6 +213,7 @@ void Executor::reparam(size_t i) {
     PassContextImpl& impl = *contexts_[i];
     Params old = impl.params;
     impl.take_params();
+    gpu_waits_.set_up(i);
     gl_.set_scope(cp.name);
     // The programs the pass has get the new parameters first; setup() then sets what it derives.
     auto set_up = [&] {
@@ -252,6 +254,7 @@ void Executor::run_frame(const FrameInfo& f) {
             PassContext ctx(contexts_[i].get());
             reset_gl_state();
             contexts_[i]->bind_pins();
+            GpuWaitCounter::Scope waits(gpu_waits_, i, f.index);  // the pass's own waits, under the mode
             passes_[i]->execute(ctx);
         } catch (const std::exception& e) {
             if (groups) glPopDebugGroup();
@@ -293,6 +296,10 @@ void Executor::finish() {
         }
     }
     if (pass_output_) pass_output_->finish();  // the capture passes' files
+    for (size_t i = 0; i < passes_.size() && gpu_wait_counting(); ++i)
+        if (const std::string line = gpu_wait_line(cg_.passes[i].name, *cg_.passes[i].type, contexts_[i]->params,
+                                                   gpu_waits_.counts()[i]); !line.empty())
+            std::fprintf(stderr, "%s\n", line.c_str());
     // Errors no debug callback reported: glGetError is not asked per frame (docs/performance.md).
     check_gl("(one of the run's passes; PATHLET_GL_DEBUG=1 narrows it down)", "the run");
 }

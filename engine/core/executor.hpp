@@ -5,6 +5,7 @@
 #pragma once
 
 #include "frames/frames_in_flight.hpp"
+#include "gpu_waits/gpu_waits.hpp"
 #include "graph/graph_model.hpp"
 #include "pass_context.hpp"
 
@@ -42,6 +43,9 @@ public:
     void finish();
     // Frames a pass reported as incomplete (PassContext::frame_incomplete), by FrameInfo::index.
     const std::set<uint64_t>& incomplete_frames() const { return incomplete_; }
+    // Each pass's waits for the GPU in its execute() (counted under PATHLET_GL_DEBUG and the
+    // latency mode, gpu_waits/gpu_waits.hpp), by pass index.
+    const std::vector<GpuWaitCount>& gpu_waits() const { return gpu_waits_.counts(); }
     // After the owner of the compiled graph changed passes[i].params: the pass sees the new
     // parameters and its setup() runs again (the Pass contract), without rebuilding anything
     // else. Throws PassError naming the pass; the pass then keeps its old parameters.
@@ -85,6 +89,7 @@ private:
     FrameInfo frame_;
     FramesInFlight frames_in_flight_;
     std::set<uint64_t> incomplete_;
+    GpuWaitCounter gpu_waits_;
     std::unique_ptr<AsyncOutput> pass_output_;  // PassContext::write_image's files (the capture pass)
 };
 

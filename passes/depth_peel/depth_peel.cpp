@@ -124,7 +124,9 @@ pathlet::PassTypeInfo depth_peel_type() {
         .internal_texture("layer", "rgba32f", "this layer's fragments summed: absorbance-weighted colour (rgb) and "
                                               "absorbance (a), shaders/oit_depth_group.glsl")
         .internal_texture("accum", "rgba32f", "colour composited so far (premultiplied) and the transmittance left")
-        .internal_texture("peeled", "r32f", "the depth of the last layer peeled per pixel (-1: none yet)");
+        .internal_texture("peeled", "r32f", "the depth of the last layer peeled per pixel (-1: none yet)")
+        .waits_for_gpu("an exact reference: after each layer it reads the layer's occlusion query, to stop at the "
+                       "first empty layer");
     return b.make<DepthPeel>();
 }
 

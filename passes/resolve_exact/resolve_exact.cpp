@@ -118,6 +118,8 @@ pathlet::PassTypeInfo resolve_exact_type() {
                                               "colour, node index")
         .internal_texture("state", "r32ui", "per pixel: fresh, pending or done (this frame)")
         .output_texture("color", "rgba8", "composited colour, alpha 1 where any fragment landed")
+        .waits_for_gpu("an exact reference: after each draw it reads how many pixels are still pending, to draw "
+                       "again until none is")
         .make<ResolveExact>();
 }
 

@@ -369,7 +369,7 @@ TEST(Cli, MalformedOptionValuesAreUsageErrorsNamingTheOption) {
         {"view --time x" + data, "--time expects a number, got 'x'"},  // was "error: stod"
         {"render --warmup 2.5 --no-images" + data, "--warmup expects an integer, got '2.5'"},
         {"render --orbit fast --no-images" + data, "--orbit expects a number, got 'fast'"},
-        {"render --timing fastest --no-images" + data, "--timing expects auto, gpu or finish, got 'fastest'"},
+        {"render --timing fastest --no-images" + data, "--timing expects auto, gpu, finish or cpu, got 'fastest'"},
         {"bench isl --frames many" + data, "--frames expects an integer, got 'many'"},
         {"bench isl --threshold 0.1x --compare x.json" + data, "--threshold expects a number, got '0.1x'"},
         {"trace f.vtk -o f.vtp --step 1/4", "--step expects a number, got '1/4'"},

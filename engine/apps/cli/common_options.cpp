@@ -80,9 +80,10 @@ void declare_camera(Args& a, std::string& file) {
 }
 
 void declare_timing(Args& a, TimingBackend& timing) {
-    a.option("timing", timing, "auto|gpu|finish",
-             "pass timing: GL timestamp queries (gpu) or glFinish-bracketed CPU clock (finish); auto: finish on "
-             "llvmpipe, timestamps on a GPU");
+    a.option("timing", timing, "auto|gpu|finish|cpu",
+             "pass timing: GL timestamp queries (gpu), glFinish-bracketed CPU clock (finish) or process CPU time "
+             "(cpu: llvmpipe's work, steady on a busy machine; no measure of a GPU); auto: finish on llvmpipe, "
+             "timestamps on a GPU");
 }
 
 void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty) {

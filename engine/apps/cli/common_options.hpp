@@ -65,7 +65,7 @@ void declare_sets(Args& a, std::vector<std::string>& sets);
 void declare_size(Args& a, glm::ivec2& size, const std::string& what);
 // --camera FILE: a camera path (render --camera's format).
 void declare_camera(Args& a, std::string& file);
-// --timing auto|gpu|finish: how passes are timed.
+// --timing auto|gpu|finish|cpu: how passes are timed.
 void declare_timing(Args& a, TimingBackend& timing);
 
 }  // namespace pathlet::cli

@@ -161,6 +161,9 @@ std::string PassTypeInfo::describe() const {
     std::ostringstream s;
     s << type << " — " << doc << "\n";
     if (!plugin_file.empty()) s << "plugin: " << plugin_file << "\n";
+    if (!gpu_wait_reason.empty())
+        s << "waits for the GPU in the frame loop" << (gpu_wait_when.empty() ? "" : " (with " + gpu_wait_when + ")")
+          << ": " << gpu_wait_reason << "\n";
     s << "\nparameters:\n";
     if (params.empty()) s << "  (none)\n";
     for (const auto& p : params) {

@@ -125,6 +125,10 @@ struct PassTypeInfo {
     std::function<std::unique_ptr<Pass>()> create;
     std::string plugin_file;  // filled in by the plugin host
     bool side_effect = false; // never culled even without connected outputs (capture, stats)
+    // The pass waits for the GPU in the frame loop on purpose (an exact reference reading a count
+    // before it goes on): why, and the bool parameter that makes it wait ("": always). Any other
+    // pass's wait after its first frame is a fault (PATHLET_GL_DEBUG and the latency mode count them).
+    std::string gpu_wait_reason, gpu_wait_when;
 
     const ParamDecl* param(const std::string& name) const;
     const PinDecl* pin(const std::string& name) const;
@@ -189,6 +193,13 @@ public:
     // The pass does work outside the graph (writes files): the compiler never culls it.
     PassTypeBuilder& side_effect() {
         info_.side_effect = true;
+        return *this;
+    }
+
+    // The pass waits for the GPU in the frame loop, on purpose (PassTypeInfo::gpu_wait_reason).
+    PassTypeBuilder& waits_for_gpu(const std::string& reason, const std::string& when_bool_param = "") {
+        info_.gpu_wait_reason = reason;
+        info_.gpu_wait_when = when_bool_param;
         return *this;
     }
 
