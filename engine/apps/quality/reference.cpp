@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -59,8 +61,11 @@ struct Frames {
     std::vector<std::vector<uint8_t>> covered;
 };
 
+// Rendered with ssaa x ssaa samples a pixel: the picture box-filtered to the size, a pixel covered
+// where any of its samples is.
 Frames render_frames(Runtime& rt, const Scene& scene, const std::string& path, const Reads& reads,
-                     const ReferenceOptions& o, const std::vector<std::string>& own_sets, const TimeRange& time) {
+                     const ReferenceOptions& o, const std::vector<std::string>& own_sets, const TimeRange& time,
+                     int ssaa) {
     RenderOptions opt;
     opt.graph_path = path;
     opt.sets = o.sets;
@@ -70,18 +75,20 @@ Frames render_frames(Runtime& rt, const Scene& scene, const std::string& path, c
     opt.write_images = false;
     opt.quiet = true;
     opt.warmup = 0;
+    opt.ssaa = ssaa;
     opt.keep = {reads.picture, reads.coverage};
     Frames f;
     render(rt, scene, opt, [&](const Executor& ex, size_t) {
         const Texture pic = ex.texture(reads.picture), cov = ex.texture(reads.coverage);
-        f.pictures.push_back(read_texture(pic.id, pic.width, pic.height, 0, 4));
+        f.pictures.push_back(box_downsample(read_texture(pic.id, pic.width, pic.height, 0, 4), ssaa));
         std::vector<float> depth(size_t(cov.width) * size_t(cov.height));
         glGetTextureImage(cov.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(depth.size() * sizeof(float)), depth.data());
-        std::vector<uint8_t> mask(depth.size());
-        for (int y = 0; y < cov.height; ++y)  // GL rows bottom-up, images top-down
-            for (int x = 0; x < cov.width; ++x)
-                mask[size_t(y) * size_t(cov.width) + size_t(x)] =
-                    depth[size_t(cov.height - 1 - y) * size_t(cov.width) + size_t(x)] < 1.0f;
+        const int w = cov.width / ssaa, h = cov.height / ssaa;
+        std::vector<uint8_t> mask(size_t(w) * size_t(h), 0);
+        for (int y = 0; y < h * ssaa; ++y)  // GL rows bottom-up, images top-down
+            for (int x = 0; x < w * ssaa; ++x)
+                if (depth[size_t(cov.height - 1 - y) * size_t(cov.width) + size_t(x)] < 1.0f)
+                    mask[size_t(y / ssaa) * size_t(w) + size_t(x / ssaa)] = 1;
         f.covered.push_back(std::move(mask));
     });
     return f;
@@ -93,8 +100,14 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
     const Reads test = reads_of(o.graph_path), ref = reads_of(o.reference_path);
     const TimeRange time = o.time ? *o.time : default_quality_time(scene);
     if (!o.time) std::fprintf(stderr, "note: %s\n", picked_time_note(time, scene, "11 frames from the middle").c_str());
-    const Frames a = render_frames(rt, scene, o.graph_path, test, o, {}, time);
-    const Frames b = render_frames(rt, scene, o.reference_path, ref, o, o.reference_sets, time);
+    const Frames a = render_frames(rt, scene, o.graph_path, test, o, {}, time, 1);
+    // A supersampled reference's samples are the truth: its own edge anti-aliasing (the variable
+    // `aa` of the shipped graphs) would blur them.
+    std::vector<std::string> ref_sets = o.reference_sets;
+    const json ref_graph = expanded_graph_json(o.reference_path);
+    if (o.reference_ssaa > 1 && ref_graph.contains("variables") && ref_graph["variables"].contains("aa"))
+        ref_sets.push_back("aa=false");
+    const Frames b = render_frames(rt, scene, o.reference_path, ref, o, ref_sets, time, std::max(o.reference_ssaa, 1));
     if (a.pictures.size() != b.pictures.size() || a.pictures.empty())
         throw std::runtime_error("the graphs rendered " + std::to_string(a.pictures.size()) + " and " +
                                  std::to_string(b.pictures.size()) + " frames");
@@ -112,7 +125,16 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
         for (size_t i = 0; i < either[k].size(); ++i) either[k][i] |= b.covered[k][i];
         r.per_frame.push_back(
             compare_images(a.pictures[k], b.pictures[k], either[k], o.ppd, flips.empty() ? nullptr : &flips[k]));
+        // Pooled over the frames: squared levels and speckles weighted by each frame's covered pixels.
+        const AaFigures fa = aa_figures(a.pictures[k], b.pictures[k]), fb = aa_figures(b.pictures[k], b.pictures[k]);
+        r.aa.rms += fa.rms * fa.rms * double(fa.covered);
+        r.aa.speckle += fa.speckle * double(fa.covered);
+        r.aa.covered += fa.covered;
+        r.reference_aa.speckle += fb.speckle * double(fb.covered);
+        r.reference_aa.covered += fb.covered;
     }
+    if (r.aa.covered) r.aa.rms = std::sqrt(r.aa.rms / double(r.aa.covered)), r.aa.speckle /= double(r.aa.covered);
+    if (r.reference_aa.covered) r.reference_aa.speckle /= double(r.reference_aa.covered);
     r.metrics = pool(r.per_frame);
     if (r.frames >= 2) r.flicker = flicker_vs_reference(a.pictures, b.pictures, either);
     if (!o.out_dir.empty()) {
