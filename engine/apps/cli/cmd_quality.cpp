@@ -63,14 +63,16 @@ int run_experiment_table(Runtime& rt, const std::string& file, quality::Transpar
 }
 
 // --reference: fidelity of GRAPH against REFGRAPH (issue 42).
-int run_reference(const quality::QualityOptions& q, const std::string& reference, bool out_given, bool transparency,
-                  const std::string& experiment, bool allow_empty, double ppd, PluginOptions& plugins,
+int run_reference(const quality::QualityOptions& q, const std::string& reference, int ssaa, bool out_given,
+                  bool transparency, const std::string& experiment, bool allow_empty, double ppd, PluginOptions& plugins,
                   SceneOptions& data) {
     if (transparency || !experiment.empty()) throw UsageError("--reference measures fidelity; not with --transparency or --experiment");
     if (q.time && q.time->times().empty()) throw UsageError("--time gives no frame");
     if (!(ppd > 0.0) || !std::isfinite(ppd)) throw UsageError("--ppd must be a positive number of pixels per degree");
+    if (ssaa < 1 || ssaa > 8) throw UsageError("--ssaa-reference must be 1..8 (got " + std::to_string(ssaa) + ")");
     quality::ReferenceOptions o;
     o.ppd = ppd;
+    o.reference_ssaa = ssaa;
     o.graph_path = q.graph_path;
     o.reference_path = reference;
     o.size = q.size;
@@ -103,6 +105,8 @@ int run_reference(const quality::QualityOptions& q, const std::string& reference
     std::printf("share over 8/255 %.4f %%\n", 100.0 * m.share_over);
     std::printf("flip %.5f (mean LDR-FLIP over the covered pixels; all pixels %.5f; %.1f pixels per degree)\n", m.flip,
                 m.flip_all, o.ppd);
+    std::printf("rms %.2f levels of 255, speckles %.4f %% (the reference's %.4f %%; ../shared/tools/aa_metric.py's figures)\n",
+                r.aa.rms, 100.0 * r.aa.speckle, 100.0 * r.reference_aa.speckle);
     if (const std::string note = quality::incomplete_frames_note(r); !note.empty()) std::printf("note: %s\n", note.c_str());
     if (r.flicker)
         std::printf("flicker vs reference %.5f (own change %.5f, the reference's %.5f)\n", r.flicker->excess,
@@ -138,12 +142,16 @@ int run(const std::vector<std::string>& argv) {
     quality::TransparencyOptions t;
     std::string experiment, reference;
     double ppd = quality::kFlipPpd;
+    int ssaa_reference = 1;
     a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
         .option("flicker-rays", q.flicker_rays, "N",
                 "ray-traced AO of every frame, for the flicker against the reference's own change: rays per pixel "
                 "(0: not measured)")
         .option("max-distance", q.max_distance, "WIDTHS", "ray-traced AO: ray length in line widths")
         .flag("include-own-line", q.own_line, "ray-traced AO: a pixel's own line occludes it too (issue 13's reference)")
+        .flag("gbuffer-point", q.gbuffer_point,
+              "ray-traced AO: rays start at the G-buffer's depth and normal (halos pushed back), not where the "
+              "pixel's ray meets its line's round tube")
         .option("depth-tolerance", q.depth_tolerance, "D",
                 "flicker: largest change of linear depth that counts as unchanged")
         .option("out", q.work_dir, "DIR", "folder for the per-pixel error image")
@@ -162,11 +170,17 @@ int run(const std::vector<std::string>& argv) {
                 "both), compared over the pixels either covers: windowed SSIM (Wang et al. 2004, 11x11 Gaussian "
                 "on luminance), PSNR, RMSE, the share of pixels more than 8/255 apart, LDR-FLIP (Andersson et al. "
                 "2020) and the flicker beyond the reference's own; --out DIR gets the difference and FLIP images")
+        .option("ssaa-reference", ssaa_reference, "N",
+                "fidelity of the edges: the reference (REFGRAPH, or GRAPH itself without --reference) rendered with "
+                "N x N samples a pixel (render --ssaa N, its variable aa off) and box-filtered; adds "
+                "../shared/tools/aa_metric.py's rms and speckles")
         .option("ppd", ppd, "PPD",
                 "--reference: FLIP's observer in pixels per degree (default 67: 0.7 m from a 0.7 m wide monitor "
                 "of 3840 pixels)")
         .example("pathlet quality variant2_exact --reference variant2_depth_peel --set window=0 --size 1280x720",
                  "the exact reference against depth peeling")
+        .example("pathlet quality variant1_lineao --ssaa-reference 4 --size 1280x720 --time 9:9.4:0.04",
+                 "edges against a 4x4 supersampled render of the same graph, still and in motion")
         .example("pathlet quality variant4_opacity --transparency --size 1280x720", "what the optimized opacity shows")
         .example("pathlet quality --transparency --experiment graphs/experiments/transparency.json",
                  "variant 2, a uniform opacity, a speed transfer function and variant 4 side by side");
@@ -180,13 +194,13 @@ int run(const std::vector<std::string>& argv) {
     if (!a.parse(argv)) return 0;
     // An option the chosen measure ignores is an error, not silence (issue 41).
     const std::vector<std::string> ao_only = {"rays", "flicker-rays", "max-distance", "include-own-line",
-                                              "depth-tolerance", "images"};
+                                              "gbuffer-point", "depth-tolerance", "images"};
     const std::vector<std::string> transparency_only = {"focus-share", "visible", "repeat"};
-    if (!reference.empty()) {
+    if (!reference.empty() || ssaa_reference != 1) {
         a.unused_here(ao_only, "with --reference (it compares two graphs' pictures; no AO is ray-traced)");
         a.unused_here(transparency_only, "with --reference (it compares pictures, not the lists' fragments)");
     } else if (transparency) {
-        a.unused_here({"ppd"}, "without --reference (FLIP compares two graphs' pictures)");
+        a.unused_here({"ppd", "ssaa-reference"}, "without --reference (FLIP compares two graphs' pictures)");
         a.unused_here(ao_only, "with --transparency (no AO is ray-traced)");
         a.unused_here({"out"}, "with --transparency (it writes no images)");
     } else {
@@ -199,8 +213,9 @@ int run(const std::vector<std::string>& argv) {
     t.size = q.size;
     t.time = q.time;
     const bool out_given = std::find(argv.begin(), argv.end(), "--out") != argv.end();
-    if (!reference.empty()) return run_reference(q, resolve_graph_path(reference), out_given, transparency,
-                                                 experiment, allow_empty, ppd, plugins, data);
+    if (!reference.empty() || ssaa_reference != 1)
+        return run_reference(q, reference.empty() ? q.graph_path : resolve_graph_path(reference), ssaa_reference,
+                             out_given, transparency, experiment, allow_empty, ppd, plugins, data);
     try {
         if (transparency) quality::check_transparency_options(t);
         else quality::check_quality_options(q);

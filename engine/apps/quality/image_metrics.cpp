@@ -171,6 +171,34 @@ FlickerVsReference FlickerAccumulator::result() const {
     return f;
 }
 
+AaFigures aa_figures(const Image& a, const Image& ref) {
+    require_same(a, ref, size_t(a.width) * size_t(a.height));
+    const auto level = [](const Image& im, int x, int y, int c) { return 255.0 * double(im.at(x, y, c)); };
+    const auto covered = [&](const Image& im, int x, int y) {
+        for (int c = 0; c < 3; ++c)
+            if (std::fabs(level(im, x, y, c) - level(a, 0, 0, c)) > 8.0) return true;
+        return false;
+    };
+    const auto lum = [&](int x, int y) { return (level(a, x, y, 0) + level(a, x, y, 1) + level(a, x, y, 2)) / 3.0; };
+    AaFigures f;
+    double sum = 0;
+    size_t speckles = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (!covered(a, x, y) && !covered(ref, x, y)) continue;
+            ++f.covered;
+            for (int c = 0; c < 3; ++c) sum += std::pow(level(a, x, y, c) - level(ref, x, y, c), 2.0) / 3.0;
+            if (x > 0 && y > 0 && x + 1 < a.width && y + 1 < a.height) {
+                const double l = lum(x, y);
+                speckles += lum(x - 1, y) - l > 60 && lum(x + 1, y) - l > 60 && lum(x, y - 1) - l > 60 &&
+                            lum(x, y + 1) - l > 60;
+            }
+        }
+    f.rms = f.covered ? std::sqrt(sum / double(f.covered)) : 0.0;
+    f.speckle = f.covered ? double(speckles) / double(f.covered) : 0.0;
+    return f;
+}
+
 Image difference_image(const Image& test, const Image& ref, const std::vector<uint8_t>& mask) {
     require_same(test, ref, mask.size());
     Image out;

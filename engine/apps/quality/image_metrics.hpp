@@ -75,6 +75,17 @@ private:
     size_t samples_ = 0;
 };
 
+// The anti-aliasing figures of ../shared/tools/aa_metric.py, for a picture against a supersampled
+// one of the same frame: rms (0..255 levels) over the pixels either picture covers (a channel more
+// than 8 levels from the test picture's corner pixel, the background), and the share of covered
+// pixels that are isolated dark speckles (luminance, the mean of R, G, B, lower by more than 60
+// levels than all four neighbours'; a pixel on the border has no four).
+struct AaFigures {
+    double rms = 0, speckle = 0;
+    size_t covered = 0;
+};
+AaFigures aa_figures(const Image& test, const Image& reference);
+
 // The per-pixel difference as a heat map: white 0, through yellow and red (16/255) to black
 // (64/255 and more) on measured pixels, light grey elsewhere.
 Image difference_image(const Image& test, const Image& reference, const std::vector<uint8_t>& mask);

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <zlib.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -67,7 +69,9 @@ struct Sample {
     bool bytes = false;  // the picture is 8-bit (stored and compared as its levels)
 };
 
-Sample read_sample(const Executor& ex, const Reads& reads) {
+// Rendered with ssaa x ssaa samples a pixel: the picture box-filtered to the size, a pixel covered
+// where any of its samples is.
+Sample read_sample(const Executor& ex, const Reads& reads, int ssaa) {
     const Texture pic = ex.texture(reads.picture), cov = ex.texture(reads.coverage);
     Sample s;
     s.picture = read_texture(pic.id, pic.width, pic.height, 0, 4);
@@ -76,13 +80,18 @@ Sample read_sample(const Executor& ex, const Reads& reads) {
     s.bytes = pic.internal_format == GL_RGBA8 || pic.internal_format == GL_SRGB8_ALPHA8;
     if (s.bytes)
         for (float& v : s.picture.pixels) v = float(to_unorm8(v)) / 255.0f;
+    if (ssaa > 1) {
+        s.picture = box_downsample(s.picture, ssaa);
+        s.bytes = false;  // an average of levels
+    }
     std::vector<float> depth(size_t(cov.width) * size_t(cov.height));
     glGetTextureImage(cov.id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(depth.size() * sizeof(float)), depth.data());
-    s.covered.resize(depth.size());
-    for (int y = 0; y < cov.height; ++y)  // GL rows bottom-up, images top-down
-        for (int x = 0; x < cov.width; ++x)
-            s.covered[size_t(y) * size_t(cov.width) + size_t(x)] =
-                depth[size_t(cov.height - 1 - y) * size_t(cov.width) + size_t(x)] < 1.0f;
+    const int w = cov.width / ssaa, h = cov.height / ssaa;
+    s.covered.assign(size_t(w) * size_t(h), 0);
+    for (int y = 0; y < h * ssaa; ++y)  // GL rows bottom-up, images top-down
+        for (int x = 0; x < w * ssaa; ++x)
+            if (depth[size_t(cov.height - 1 - y) * size_t(cov.width) + size_t(x)] < 1.0f)
+                s.covered[size_t(y / ssaa) * size_t(w) + size_t(x / ssaa)] = 1;
     return s;
 }
 
@@ -147,7 +156,7 @@ private:
 
 RenderResult render_graph(Runtime& rt, const Scene& scene, const std::string& path, const Reads& reads,
                           const ReferenceOptions& o, const std::vector<std::string>& own_sets, const TimeRange& time,
-                          const std::function<void(Sample&&)>& take) {
+                          int ssaa, const std::function<void(Sample&&)>& take) {
     RenderOptions opt;
     opt.graph_path = path;
     opt.sets = o.sets;
@@ -157,8 +166,9 @@ RenderResult render_graph(Runtime& rt, const Scene& scene, const std::string& pa
     opt.write_images = false;
     opt.quiet = true;
     opt.warmup = 0;
+    opt.ssaa = ssaa;
     opt.keep = {reads.picture, reads.coverage};
-    return render(rt, scene, opt, [&](const Executor& ex, size_t) { take(read_sample(ex, reads)); });
+    return render(rt, scene, opt, [&](const Executor& ex, size_t) { take(read_sample(ex, reads, ssaa)); });
 }
 
 // "3, 4 and 11 of 11"
@@ -179,17 +189,23 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
     r.graph = test.name;
     r.reference = ref.name;
     Spool spool;
-    const RenderResult tested = render_graph(rt, scene, o.graph_path, test, o, {}, time, [&](Sample&& s) { spool.put(s); });
+    const RenderResult tested = render_graph(rt, scene, o.graph_path, test, o, {}, time, 1, [&](Sample&& s) { spool.put(s); });
     r.incomplete_frames = tested.incomplete_frames;
     spool.rewind();
     const std::string stem = o.out_dir + "/" + r.graph + "_vs_" + r.reference;
     if (!o.out_dir.empty()) fs::create_directories(o.out_dir);
     // Each reference frame is measured as it arrives, against the test's frame of that time.
+    // A supersampled reference's samples are the truth: its own edge anti-aliasing (the variable
+    // `aa` of the shipped graphs) would blur them.
+    std::vector<std::string> ref_sets = o.reference_sets;
+    const json ref_graph = expanded_graph_json(o.reference_path);
+    if (o.reference_ssaa > 1 && ref_graph.contains("variables") && ref_graph["variables"].contains("aa"))
+        ref_sets.push_back("aa=false");
     FlickerAccumulator flicker;
     Sample last_test, last_ref;
     std::vector<uint8_t> last_either;
     size_t k = 0;
-    const RenderResult reference = render_graph(rt, scene, o.reference_path, ref, o, o.reference_sets, time, [&](Sample&& b) {
+    const RenderResult reference = render_graph(rt, scene, o.reference_path, ref, o, ref_sets, time, std::max(o.reference_ssaa, 1), [&](Sample&& b) {
         if (k >= spool.frames())
             throw std::runtime_error("the reference rendered more frames than " + r.graph + " (" +
                                      std::to_string(spool.frames()) + ")");
@@ -198,6 +214,13 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
         for (size_t i = 0; i < either.size() && i < b.covered.size(); ++i) either[i] |= b.covered[i];
         std::vector<float> flip;
         r.per_frame.push_back(compare_images(a.picture, b.picture, either, o.ppd, o.out_dir.empty() ? nullptr : &flip));
+        // Pooled over the frames: squared levels and speckles weighted by each frame's covered pixels.
+        const AaFigures fa = aa_figures(a.picture, b.picture), fb = aa_figures(b.picture, b.picture);
+        r.aa.rms += fa.rms * fa.rms * double(fa.covered);
+        r.aa.speckle += fa.speckle * double(fa.covered);
+        r.aa.covered += fa.covered;
+        r.reference_aa.speckle += fb.speckle * double(fb.covered);
+        r.reference_aa.covered += fb.covered;
         if (k > 0) flicker.add(last_test.picture, a.picture, last_ref.picture, b.picture, last_either, either);
         if (!o.out_dir.empty()) {
             char name[32];
@@ -225,6 +248,8 @@ ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const
     const std::vector<double> times = time.times();
     r.first_time = times.front();
     r.last_time = times[std::min(times.size(), r.frames) - 1];
+    if (r.aa.covered) r.aa.rms = std::sqrt(r.aa.rms / double(r.aa.covered)), r.aa.speckle /= double(r.aa.covered);
+    if (r.reference_aa.covered) r.reference_aa.speckle /= double(r.reference_aa.covered);
     r.metrics = pool(r.per_frame);
     if (r.frames >= 2) r.flicker = flicker.result();
     if (!o.out_dir.empty()) {

@@ -27,6 +27,7 @@ struct ReferenceOptions {
     std::vector<std::string> reference_sets; // the reference's own, after `sets` (Python's Graph.set)
     glm::ivec2 size{320, 180};
     std::optional<TimeRange> time;  // none: default_quality_time(scene), said on stderr
+    int reference_ssaa = 1;         // the reference rendered with N x N samples a pixel (render --ssaa N), box-filtered
     std::string out_dir;            // non-empty: difference and FLIP images (and the last pair) written here
     double ppd = kFlipPpd;          // FLIP's observer: pixels per degree of visual angle
 };
@@ -38,6 +39,8 @@ struct ReferenceResult {
     ImageMetrics metrics;                  // pooled over the frames
     std::vector<ImageMetrics> per_frame;
     std::optional<FlickerVsReference> flicker;  // with two frames or more
+    AaFigures aa, reference_aa;            // aa_metric's figures against the reference, pooled over frames;
+                                           // the reference's speckles (its rms 0)
     std::vector<std::string> images;       // files written to out_dir
     std::vector<size_t> incomplete_frames;  // of the tested graph (fragments dropped), ascending
 };

@@ -39,9 +39,11 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
     return declare_line_width_params(declare_window_param(b))
         .param_float("halo", 0.2, 0.0, 0.9,
                      "fraction of the width drawn as halo, split between both rims (study: 20 %); 0 = off")
-        .param_float("halo_min_px", 1.0, 0.0, 16.0,
-                     "the halo band is at least this many pixels wide on screen (at most half the half width), so "
-                     "thin lines keep a continuous outline instead of scattered dark pixels; 0 = the fraction alone",
+        .param_float("halo_min_px", 0.0, 0.0, 16.0,
+                     "the halo band is at least this many pixels wide on screen (at most half the half width): "
+                     "a bolder outline than the line's own at small sizes; 0 = the fraction alone, as a "
+                     "supersampled render draws it (the band's tint is averaged over each pixel's footprint, so "
+                     "even a band far thinner than a pixel reads as an even, faint outline)",
                      {.pixels = true})
         .param_color("halo_color", {0.0f, 0.0f, 0.0f},
                      "colour the halo gradient runs to at the rim (dark edges read as tube outlines)")
