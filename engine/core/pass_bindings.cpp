@@ -51,7 +51,7 @@ void PassBindings::assign_units(ShaderProgram& prog, const PassTypeInfo& type) {
         if (!u.opaque) continue;
         const std::string pin = u.name.rfind("u_", 0) == 0 ? u.name.substr(2) : "";
         const PinDecl* decl = pin.empty() ? nullptr : type.pin(pin);
-        const bool is_pin = decl && decl->kind == PinKind::Texture;
+        const bool is_pin = decl && (decl->kind == PinKind::Texture || decl->view);
         std::map<std::string, int>& pins = u.image ? image_pins_ : sampler_pins_;
         int unit = 0;
         if (is_pin && pins.count(pin)) {

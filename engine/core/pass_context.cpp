@@ -31,15 +31,23 @@ void PassContextImpl::unbound(const std::string& pin, const char* what) const {
 
 void PassContextImpl::bind_pins() {
     PassContext ctx(this);
-    for (const auto& [pin, unit] : bindings.sampler_pins())
-        glBindTextureUnit(GLuint(unit), ctx.connected(pin) ? ctx.texture(pin).id : 0);
-    for (const auto& [pin, unit] : bindings.image_pins())
-        if (ctx.connected(pin)) {
-            const Texture t = ctx.texture(pin);
-            glBindImageTexture(GLuint(unit), t.id, 0, GL_FALSE, 0, GL_READ_WRITE, t.internal_format);
-        }
+    for (const auto& [pin, unit] : bindings.sampler_pins()) bind_view_or_texture(pin, unit, false);
+    for (const auto& [pin, unit] : bindings.image_pins()) bind_view_or_texture(pin, unit, true);
     for (const auto& [pin, point] : bindings.buffers())
         if (ctx.connected(pin)) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(point), ctx.buffer(pin).id);
+}
+
+void PassContextImpl::bind_view_or_texture(const std::string& pin, int unit, bool image) {
+    PassContext ctx(this);
+    if (!ctx.connected(pin)) {
+        if (!image) glBindTextureUnit(GLuint(unit), 0);
+        return;
+    }
+    const PinDecl* decl = pass().type->pin(pin);
+    const GLenum view = decl ? decl->view : 0;
+    const GLuint id = view ? ctx.buffer_texture(pin, view) : ctx.texture(pin).id;
+    if (!image) glBindTextureUnit(GLuint(unit), id);
+    else glBindImageTexture(GLuint(unit), id, 0, GL_FALSE, 0, GL_READ_WRITE, view ? view : ctx.texture(pin).internal_format);
 }
 
 const std::string& PassContext::pass_name() const { return impl_->pass().name; }
@@ -80,8 +88,12 @@ Buffer PassContext::grow_buffer(const std::string& pin, size_t bytes) {
     glObjectLabel(GL_BUFFER, id, -1, label.c_str());
     glDeleteBuffers(1, &ph.buf.id);
     ph.buf = {id, bytes};
-    // The pin's binding point now holds the new store (bind_pins bound the old one).
+    // The pin's binding point and its view's unit now hold the new store (bind_pins bound the old one).
     if (const int at = impl_->bindings.buffer(pin); at >= 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(at), id);
+    for (const bool image : {false, true}) {
+        const auto& units = image ? impl_->bindings.image_pins() : impl_->bindings.sampler_pins();
+        if (const auto u = units.find(pin); u != units.end()) impl_->bind_view_or_texture(pin, u->second, image);
+    }
     return ph.buf;
 }
 
@@ -155,6 +167,7 @@ void PassContext::bind_framebuffer(const std::vector<std::string>& color_pins, c
         w = std::max(1, output_size().x >> mip);
         h = std::max(1, output_size().y >> mip);
     }
+    impl_->depth_bound = depth_pin;
     GLuint fbo = impl_->host.framebuffer(color, depth, mip, impl_->pass().name);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -186,6 +199,22 @@ void PassContext::draw_fullscreen() {
     glBindVertexArray(impl_->host.empty_vertex_array());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
+}
+
+void PassContext::draw_fullscreen(ShaderProgram& prog, glm::ivec4 rect, const std::string& depth_pin) {
+    if (!depth_pin.empty() && depth_pin != impl_->depth_bound)
+        throw std::logic_error("pass '" + pass_name() + "': draw_fullscreen on '" + depth_pin +
+                               "' needs it bound as the framebuffer's depth (bind_framebuffer(..., \"" + depth_pin + "\"))");
+    if (rect.z <= rect.x || rect.w <= rect.y) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect.x, rect.y, rect.z - rect.x, rect.w - rect.y);
+    if (depth_pin.empty()) {
+        prog.use();
+        draw_fullscreen();
+    } else {
+        draw_fullscreen_on_geometry(prog);
+    }
+    glDisable(GL_SCISSOR_TEST);
 }
 
 void PassContext::draw_fullscreen_on_geometry(ShaderProgram& prog) {

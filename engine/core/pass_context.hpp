@@ -67,6 +67,7 @@ struct PassContextImpl {
     PassBindings bindings;
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs;
     std::map<std::pair<std::string, GLenum>, BufferTexture> buffer_views;  // buffer_texture()
+    std::string depth_bound;  // the depth pin bind_framebuffer attached last ("": none)
 
     const CompiledPass& pass() const { return host.graph().passes[size_t(index)]; }
     const Binding* binding(const std::string& pin) const;
@@ -76,6 +77,8 @@ struct PassContextImpl {
     // Binds the texture pins its programs read (on their units) and its buffer pins (on their
     // binding points), before each execute().
     void bind_pins();
+    // A texture pin's texture, or a buffer pin's view (PinOptions::view), on its sampler or image unit.
+    void bind_view_or_texture(const std::string& pin, int unit, bool image);
 };
 
 }  // namespace pathlet

@@ -1,4 +1,4 @@
-// Which plugin folders a run may load (issue 23). Loading a plugin runs its code, and a graph
+// Which plugin folders a run may load. Loading a plugin runs its code, and a graph
 // or experiment file can name any folder in "plugin_dirs", so:
 //   - folders the user names for the run are trusted: --plugin-dir, PATHLET_PLUGIN_PATH, the
 //     built-in/installed folder (PluginHost::search_path);

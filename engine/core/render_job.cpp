@@ -53,20 +53,23 @@ void warm_up_by_time(double seconds, Profiler& profiler, const std::function<voi
 }  // namespace
 
 RenderJob::RenderJob(Runtime& rt, RenderOptions opt, Runtime::SetsFrom from, std::vector<ReadBack> read_backs)
-    : rt_(rt), opt_(std::move(opt)), read_backs_(std::move(read_backs)) {
+    : rt_(rt), opt_(std::move(opt)) {
     graph_ = rt_.load_graph(opt_.graph_path, opt_.sets, from);
     // Supersampling: the graph runs at N x N the size with its pixel-measured parameters scaled
     // (PassContext::pixel_scale), and every captured frame is box-filtered back to `size`.
     const int ssaa = std::max(1, opt_.ssaa);
     compiled_ = compile_graph(graph_, rt_.registry, opt_.size * ssaa, float(ssaa));
-    for (auto& rb : read_backs_) {
-        std::string why;
-        const int r = compiled_.resolve(rb.resource, &why);
-        if (r < 0) throw std::invalid_argument(why);
-        rb.resource = compiled_.resources[size_t(r)].name;
-        opt_.keep.push_back(rb.resource);  // out of the pool: still theirs after the frame
-    }
     keep_resources(compiled_, opt_.keep);
+    for (auto& rb : read_backs) read_back(std::move(rb));
+}
+
+void RenderJob::read_back(ReadBack rb) {
+    std::string why;
+    const int r = compiled_.resolve(rb.resource, &why);
+    if (r < 0) throw std::invalid_argument(why);
+    rb.resource = compiled_.resources[size_t(r)].name;
+    keep_resources(compiled_, {rb.resource});  // out of the pool: still theirs after the frame
+    read_backs_.push_back(std::move(rb));
 }
 
 // One run of the job, in the order it happens: the GPU side set up, the frames scheduled

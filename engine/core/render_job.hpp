@@ -35,6 +35,12 @@ public:
     const GraphFile& graph() const { return graph_; }
     const CompiledGraph& compiled() const { return compiled_; }
     const RenderOptions& options() const { return opt_; }
+    // What a run sets once the inputs are known (the time range, the callbacks, stop): the size,
+    // the graph and its --set are the compiled graph's and stay as the constructor took them.
+    RenderOptions& options() { return opt_; }
+    // One more resource read back every frame (before run()); std::invalid_argument, naming the
+    // graph's resources, where it has none of that name.
+    void read_back(ReadBack rb);
 
     // Renders opt.time over `scene` on the runtime's GL context. `on_frame` (optional) sees the
     // executor after each frame (tests read textures).

@@ -67,8 +67,7 @@ private:
             }
             ctx.bind_framebuffer(targets(out), "depth");
             // Covered pixels lie inside the lines' screen rectangle: tiles outside it are skipped.
-            pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
-            ctx.draw_fullscreen_on_geometry(*prog_);
+            ctx.draw_fullscreen(*prog_, pathlet::lines::screen_rect(ctx, 2), "depth");
         } else if (compute_) {
             ctx.dispatch_fullscreen(*prog_);
         } else {

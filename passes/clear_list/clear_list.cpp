@@ -1,4 +1,4 @@
-// clear_list: resets the per-pixel linked lists of OIT (seed §III.c, the pipeline's first
+// clear_list: resets the per-pixel linked lists of OIT (the pipeline's first
 // pass): every head pointer to "empty" and the node counter to 0.
 #include <pathlet/oit.hpp>
 #include <pathlet/plugin.hpp>

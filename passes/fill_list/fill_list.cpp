@@ -1,4 +1,4 @@
-// fill_list: variant 2's second pass (seed §III.c). Rasterises the pathlets of the time window
+// fill_list: variant 2's second pass. Rasterises the pathlets of the time window
 // through the line kit into per-pixel linked lists, with opacity ramping from 0 at the tail to
 // full and back to 0 at the head (the kit's end fade). Colour writes are masked as in the seed:
 // nothing goes to a framebuffer, only to the lists. Or, with its G-buffer outputs bound, the
@@ -8,7 +8,7 @@
 // Overflow is never silent. The first frame after the graph is built reads the node counter back
 // after the draw (a wait, once): on overflow the buffer grows (x1.25 the count, within
 // max_memory_mb and the GL buffer-texture limit) and the frame's lists are rebuilt, so a single
-// picture is whole. Later frames never wait (issue 34: a GPU idles while the CPU waits, and its
+// picture is whole. Later frames never wait (a GPU idles while the CPU waits, and its
 // clock drops), nor does a parameter change (setup() again): every frame's counter is copied
 // through a fenced ring (pathlet::GpuReadback) and read when the GPU is done, every count in
 // order; the buffer grows ahead when a frame used more than kGrowAt of it, to kHeadroom x that
@@ -41,10 +41,10 @@ public:
         // counts_ stays: only the first frame after the graph is built waits for its count (a
         // parameter change must not drain the GPU; what overflows after it is found late).
         records_ = ctx.connected("records");
-        coverage_ = ctx.connected("coverage");
+        coverage_ = lines::Coverage(ctx);
         gbuffer_ = lines::gbuffer_targets(ctx);
         writes_gbuffer_ = ctx.connected("depth");
-        if (writes_gbuffer_ && coverage_)
+        if (writes_gbuffer_ && coverage_.connected())
             throw std::runtime_error("bind 'coverage' or the G-buffer's 'depth', not both (with the G-buffer, its "
                                      "depth is the coverage)");
         if (!writes_gbuffer_ && !gbuffer_.pins.empty())
@@ -207,19 +207,11 @@ private:
         if (writes_gbuffer_) {
             lines::bind_gbuffer(ctx, gbuffer_, *prog_);  // cleared again when an overflow re-renders
         } else {
-            ctx.bind_framebuffer({}, coverage_ ? "coverage" : "");
-            if (coverage_) {
-                glDepthMask(GL_TRUE);
-                const float far = 1.0f;
-                glClearBufferfv(GL_DEPTH, 0, &far);
-            }
+            ctx.bind_framebuffer({}, coverage_.depth_pin());
+            coverage_.clear();
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the seed: colour writes masked
         }
-        // heads (image) and counter (storage block) are bound by declaration; the buffers as images:
-        prog_->bind_image("u_nodes", ctx.buffer_texture("nodes", oit::kNodeFormat), oit::kNodeFormat, GL_WRITE_ONLY);
-        if (records_)
-            prog_->bind_image("u_records", ctx.buffer_texture("records", oit::kNodeFormat), oit::kNodeFormat, GL_WRITE_ONLY);
-        prog_->use();
+        prog_->use();  // heads, nodes, records (images) and counter (storage block) by declaration
         prog_->set("u_capacity", int(std::min<size_t>(capacity, 0x7fffffff)));
         drawer_.draw(ctx, *prog_);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -232,7 +224,8 @@ private:
 
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    bool coverage_ = false, records_ = false, writes_gbuffer_ = false;
+    lines::Coverage coverage_;
+    bool records_ = false, writes_gbuffer_ = false;
     lines::GBufferTargets gbuffer_;  // the bound G-buffer colour targets (only with 'depth')
     size_t max_nodes_ = 1;
     long long events_total_ = 0;
@@ -266,12 +259,12 @@ pathlet::PassTypeInfo fill_list_type() {
         .output_buffer("nodes",
                        "the nodes (uvec4: colour, depth, next, line id), grown to nodes_per_pixel x pixels and on "
                        "overflow",
-                       {.bytes = oit::kNodeBytes})
+                       {.bytes = oit::kNodeBytes}, {.view = oit::kNodeFormat})
         .output_buffer("records",
                        "per node, what the line kit's volume AO needs (line_volume_ao_pack: normal, tangent, axis, "
                        "opacity), grown with the nodes: resolve_list shades every fragment by its own AO (bind it "
                        "to get it)",
-                       {.bytes = oit::kNodeBytes}, {.optional = true});
+                       {.bytes = oit::kNodeBytes}, {.optional = true, .view = oit::kNodeFormat});
     // Bound (with `depth`): the opaque G-buffer of the same fragments, for LineAO, in this raster.
     lines::declare_gbuffer_outputs(b, /*optional=*/true);
     return b.make<FillList>();

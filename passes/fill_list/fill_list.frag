@@ -1,6 +1,6 @@
 #version 450 core
 // fill_list's fragment stage: every fragment of a pathlet quad becomes a node of its pixel's
-// linked list (seed §III.b: take a node index from the counter, swap it into the head, link
+// linked list (take a node index from the counter, swap it into the head, link
 // the old head), with its colour (speed map, colour hook, halo), the opacity of its colour hook
 // (by default the kit's end fade, fade_opacity.frag) times its edge coverage, its linear depth
 // and its line id; optionally a second record per node with its normal, tangent, axis and the

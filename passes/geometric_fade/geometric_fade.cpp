@@ -1,4 +1,4 @@
-// geometric_fade: variant 3 of the study (seed §IV.d). Pathlet ends taper in width instead of
+// geometric_fade: variant 3 of the study. Pathlet ends taper in width instead of
 // opacity, so the G-buffer stays opaque and LineAO needs no transparency: the line kit's
 // G-buffer pass whose default width hook is the kit's taper (fade_width.geom, on the end fade's
 // parameters declared in line_fade.glsl).

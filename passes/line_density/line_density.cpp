@@ -1,4 +1,4 @@
-// line_density: the line-density volume of the pathlets visible in the time window (issue 25),
+// line_density: the line-density volume of the pathlets visible in the time window,
 // rebuilt every frame: a grid of cubic voxels fitted to the lines' bounds (`grid` voxels along
 // the longest side, two empty voxels of margin), cleared, then every segment of the window
 // splatted by line_density.comp. The volume is a storage buffer (layout: the kit's

@@ -121,15 +121,9 @@ private:
             ctx.dispatch_fullscreen(prog, rect, ctx.connected("depth") ? "depth" : "");
             return;
         }
-        pathlet::lines::ScopedScissor clip(rect);
-        if (ctx.connected("depth")) {
-            ctx.bind_framebuffer({"ao"}, "depth");
-            ctx.draw_fullscreen_on_geometry(prog);
-        } else {
-            ctx.bind_framebuffer({"ao"});
-            prog.use();
-            ctx.draw_fullscreen();
-        }
+        const std::string depth = ctx.connected("depth") ? "depth" : "";
+        ctx.bind_framebuffer({"ao"}, depth);
+        ctx.draw_fullscreen(prog, rect, depth);
     }
 
     pathlet::ShaderProgram* prog_ = nullptr;

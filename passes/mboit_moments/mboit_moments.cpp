@@ -19,7 +19,7 @@ namespace lines = pathlet::lines;
 class MboitMoments : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        coverage_ = ctx.connected("coverage");
+        coverage_ = lines::Coverage(ctx);
         const pathlet::oit::MomentForm& form = pathlet::oit::moment_form(ctx.params());
         high_ = form.needs_high();
         if (high_ && !ctx.connected("moments_high"))
@@ -36,10 +36,10 @@ public:
         // moments_high, where connected but not used (power4), is neither attached nor cleared.
         std::vector<std::string> targets = {"b0", "moments"};
         if (high_) targets.push_back("moments_high");
-        ctx.bind_framebuffer(targets, coverage_ ? "coverage" : "");
-        const float zero[4] = {0, 0, 0, 0}, far = 1.0f;
+        ctx.bind_framebuffer(targets, coverage_.depth_pin());
+        const float zero[4] = {0, 0, 0, 0};
         for (int i = 0; i < int(targets.size()); ++i) glClearBufferfv(GL_COLOR, i, zero);
-        if (coverage_) glClearBufferfv(GL_DEPTH, 0, &far);
+        coverage_.clear();
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);  // sums over the pixel's fragments, in any order
         prog_->use();
@@ -49,7 +49,8 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    bool coverage_ = false, high_ = false;
+    lines::Coverage coverage_;
+    bool high_ = false;
 };
 
 pathlet::PassTypeInfo mboit_moments_type() {

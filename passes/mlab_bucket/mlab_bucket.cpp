@@ -14,17 +14,17 @@ namespace lines = pathlet::lines;
 class MlabBucket : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        coverage_ = ctx.connected("coverage");
+        coverage_ = lines::Coverage(ctx);
         prog_ = &lines::program(ctx, {"mlab_bucket.frag"}, lines::hooks(ctx));
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment counts; the depth only records coverage
         drawer_.set_blending(true);
     }
 
     void execute(pathlet::PassContext& ctx) override {
-        ctx.bind_framebuffer({"bucket"}, coverage_ ? "coverage" : "");
-        const float far[4] = {1, 1, 1, 1}, depth = 1.0f;
+        ctx.bind_framebuffer({"bucket"}, coverage_.depth_pin());
+        const float far[4] = {1, 1, 1, 1};
         glClearBufferfv(GL_COLOR, 0, far);
-        if (coverage_) glClearBufferfv(GL_DEPTH, 0, &depth);
+        coverage_.clear();
         glEnable(GL_BLEND);
         glBlendEquation(GL_MIN);  // the nearest, in any order
         glBlendFunc(GL_ONE, GL_ONE);
@@ -36,7 +36,7 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    bool coverage_ = false;
+    lines::Coverage coverage_;
 };
 
 pathlet::PassTypeInfo mlab_bucket_type() {

@@ -27,19 +27,13 @@ public:
     }
 
     void execute(pathlet::PassContext& ctx) override {
-        const bool skip_empty = ctx.connected("coverage");
-        if (skip_empty) {  // the background everywhere first; the shader then runs on covered tiles only
+        const pathlet::lines::Coverage coverage(ctx);
+        if (coverage.connected()) {  // the background everywhere first; the shader then runs on covered tiles only
             const glm::vec4 bg(ctx.params().v3("background"), 0.0f);
             glClearTexImage(ctx.texture("color").id, 0, GL_RGBA, GL_FLOAT, &bg.x);
         }
-        ctx.bind_framebuffer({"color"}, skip_empty ? "coverage" : "");
-        prog_->use();
-        if (skip_empty) {
-            pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
-            ctx.draw_fullscreen_on_geometry(*prog_);
-        } else {
-            ctx.draw_fullscreen();
-        }
+        ctx.bind_framebuffer({"color"}, coverage.depth_pin());
+        coverage.draw(ctx, *prog_);
     }
 
 private:

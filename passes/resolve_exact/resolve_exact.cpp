@@ -28,7 +28,6 @@ public:
     }
 
     void execute(pathlet::PassContext& ctx) override {
-        const GLuint nodes = ctx.buffer_texture("nodes", pathlet::oit::kNodeFormat);  // fill_list may have grown it
         const GLuint stats = ctx.buffer("stats").id;
         const GLuint zero[4] = {0, 0, 0, 0};
         // The last frame's draws wrote stats (atomics) and state (image stores): their writes
@@ -37,14 +36,13 @@ public:
         glNamedBufferSubData(stats, 0, sizeof(zero), zero);
         const GLuint fresh = 0;
         glClearTexImage(ctx.texture("state").id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &fresh);
-        const bool skip_empty = ctx.connected("coverage");
-        if (skip_empty) {  // background everywhere first; the shader then runs on covered pixels only
+        const pathlet::lines::Coverage coverage(ctx);
+        if (coverage.connected()) {  // background everywhere first; the shader then runs on covered pixels only
             const glm::vec4 bg(ctx.params().v3("background"), 0.0f);
             glClearTexImage(ctx.texture("color").id, 0, GL_RGBA, GL_FLOAT, &bg.x);
         }
-        ctx.bind_framebuffer({"color"}, skip_empty ? "coverage" : "");
-        prog_->bind_texture("u_nodes", nodes);
-        prog_->use();  // heads, carry, last, state, stats and the parameters by declaration
+        ctx.bind_framebuffer({"color"}, coverage.depth_pin());
+        prog_->use();  // heads, nodes, carry, last, state, stats and the parameters by declaration
         prog_->set("u_visit_budget", int(kVisitBudget));
         // Draws until no pixel is pending: the cut and pending counts are read back after each
         // draw (a wait; the reference is asked for its pixels). Most frames finish in the first.
@@ -58,12 +56,7 @@ public:
                                          " node visits each; raise max_draws");
             glNamedBufferSubData(stats, 3 * sizeof(GLuint), sizeof(GLuint), &zero[0]);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-            if (skip_empty) {
-                pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
-                ctx.draw_fullscreen_on_geometry(*prog_);
-            } else {
-                ctx.draw_fullscreen();
-            }
+            coverage.draw(ctx, *prog_);
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
             glGetNamedBufferSubData(stats, 2 * sizeof(GLuint), sizeof cut_pending, cut_pending);
         }
@@ -103,7 +96,8 @@ pathlet::PassTypeInfo resolve_exact_type() {
                    "the next); a frame that needs more fails, naming this")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
         .input_texture("heads", "r32ui", "per-pixel list heads (fill_list)")
-        .input_buffer("nodes", "list nodes (fill_list; with never_drop it holds every fragment)")
+        .input_buffer("nodes", "list nodes (fill_list; with never_drop it holds every fragment)",
+                      {.view = pathlet::oit::kNodeFormat})
         .input_texture("coverage", "depth24",
                        "fill_list's coverage depth: when connected, pixels without fragments are only cleared",
                        {.optional = true})

@@ -50,12 +50,11 @@ public:
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
-        const GLuint nodes = ctx.buffer_texture("nodes", pathlet::oit::kNodeFormat);  // fill_list may have grown it
         const GLuint stats = ctx.buffer("stats").id;
         const GLuint zero[4] = {0, 0, 0, 0};
         glNamedBufferSubData(stats, 0, sizeof(zero), zero);
-        const bool skip_empty = ctx.connected("coverage");
-        if (skip_empty) {  // background everywhere first; the shader then runs on covered tiles only
+        const pathlet::lines::Coverage coverage(ctx);
+        if (coverage.connected()) {  // background everywhere first; the shader then runs on covered tiles only
             const glm::vec4 bg(p.v3("background"), 0.0f);
             const glm::vec4 none(0.0f);
             const glm::vec4 far(0.0f, 0.0f, 0.0f, 1.0f), unoccluded(1.0f);
@@ -68,22 +67,11 @@ public:
                                      : t == "front_ao" ? &unoccluded.x : &bg.x);
             }
         }
-        ctx.bind_framebuffer(targets_, skip_empty ? "coverage" : "");
-        prog_->bind_texture("u_nodes", nodes);
-        prog_->use();  // heads, ao, core, stats and the parameters by declaration
+        ctx.bind_framebuffer(targets_, coverage.depth_pin());
+        prog_->use();  // heads, nodes, records, ao, core, stats and the parameters by declaration
         prog_->set("u_use_ao", ctx.connected("ao") ? 1 : 0);
-        if (vao_on_) {
-            prog_->bind_texture("u_records", ctx.buffer_texture("records", pathlet::oit::kNodeFormat));
-            vao_.bind(ctx, *prog_);
-        }
-        if (skip_empty) {
-            // Only where the lines can be (the targets were cleared): llvmpipe runs the shader on
-            // every block the draw covers, depth-tested or not (62 -> 40 ms at 720p, variant2_oit_ao).
-            pathlet::lines::ScopedScissor clip(pathlet::lines::screen_rect(ctx, 2));
-            ctx.draw_fullscreen_on_geometry(*prog_);
-        } else {
-            ctx.draw_fullscreen();
-        }
+        if (vao_on_) vao_.bind(ctx, *prog_);
+        coverage.draw(ctx, *prog_);  // where covered the targets were cleared above
         // The statistics through a fenced copy, read when the GPU is done (a frame or two late
         // on a GPU): the frame loop never waits for them.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -123,7 +111,7 @@ pathlet::PassTypeInfo resolve_list_type() {
                        "behind take the last one's (2: RMS 2.7/255 at 720p on the phantom, 0.7x the pass)")
             .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
             .input_texture("heads", "r32ui", "per-pixel list heads (fill_list)")
-            .input_buffer("nodes", "list nodes (fill_list)")
+            .input_buffer("nodes", "list nodes (fill_list)", {.view = pathlet::oit::kNodeFormat})
             .input_texture("ao", "r16f", "smoothed AO of the opaque core (bilateral's ao_smooth)", {.optional = true})
             .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core)", {.optional = true})
             .input_texture("coverage", "depth24",
@@ -131,7 +119,7 @@ pathlet::PassTypeInfo resolve_list_type() {
             .input_buffer("records",
                           "fill_list's records: with density, every fragment is shaded by its own AO (fill_list's "
                           "line_width and width_factor must be this pass's)",
-                          {.optional = true, .same_params = {"line_width", "width_factor"}})
+                          {.optional = true, .same_params = {"line_width", "width_factor"}, .view = pathlet::oit::kNodeFormat})
             .input_buffer("density", "the line-density volume (line_density), with records", {.optional = true})
             .internal_buffer("stats", "peak list length and truncated pixels of the frame (two uints)", {.bytes = 16})
             .output_texture("color", "rgba8",

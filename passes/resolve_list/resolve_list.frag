@@ -8,7 +8,7 @@
 // applied per fragment: only to fragments at the core's depth; faded fragments in front of the
 // core and fragments behind it stay unoccluded.
 #include "oit_list.glsl"
-#ifdef VOLUME_AO  // every fragment shaded by its own AO from fill_list's records (issue 25)
+#ifdef VOLUME_AO  // every fragment shaded by its own AO from fill_list's records
 #include "line_volume_ao.glsl"
 uniform usamplerBuffer u_records;  // the pass's view of fill_list's records
 #endif

@@ -1,4 +1,4 @@
-// temporal_ao: makes LineAO temporally stable in animation (issue 13). Blends this frame's AO
+// temporal_ao: makes LineAO temporally stable in animation. Blends this frame's AO
 // with last frame's accumulated AO where the pixel, reprojected with last frame's camera, shows
 // the same line at the expected depth; elsewhere (disocclusion, another line in front, first
 // frame) the history is dropped. Keeps last frame's camera itself, so a moving camera works too.
@@ -42,8 +42,7 @@ public:
                 ctx.dispatch_fullscreen(*prog_, rect, "depth");
             } else {
                 ctx.bind_framebuffer({"ao_acc"}, "depth");
-                pathlet::lines::ScopedScissor clip(rect);
-                ctx.draw_fullscreen_on_geometry(*prog_);
+                ctx.draw_fullscreen(*prog_, rect, "depth");
             }
         } else if (compute_) {
             ctx.dispatch_fullscreen(*prog_);

@@ -1,5 +1,5 @@
 // volume_ao: object-space line AO per pixel of the G-buffer from the line-density volume
-// (line_density), issue 25. The estimate itself is the line kit's (line_volume_ao.glsl), so a
+// (line_density). The estimate itself is the line kit's (line_volume_ao.glsl), so a
 // line pass that shades its own fragments (fill_list under OIT) computes the same AO.
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
@@ -31,14 +31,9 @@ public:
             ctx.dispatch_fullscreen(*prog_, lines::screen_rect(ctx, 2), ctx.connected("depth") ? "depth" : "");
             return;
         }
-        lines::ScopedScissor clip(lines::screen_rect(ctx, 2));
-        if (ctx.connected("depth")) {
-            ctx.bind_framebuffer({"ao"}, "depth");
-            ctx.draw_fullscreen_on_geometry(*prog_);
-        } else {
-            ctx.bind_framebuffer({"ao"});
-            ctx.draw_fullscreen();
-        }
+        const std::string depth = ctx.connected("depth") ? "depth" : "";
+        ctx.bind_framebuffer({"ao"}, depth);
+        ctx.draw_fullscreen(*prog_, lines::screen_rect(ctx, 2), depth);
     }
 
 private:

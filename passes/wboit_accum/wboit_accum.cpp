@@ -18,18 +18,18 @@ namespace lines = pathlet::lines;
 class WboitAccum : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        coverage_ = ctx.connected("coverage");
+        coverage_ = lines::Coverage(ctx);
         prog_ = &lines::program(ctx, {"wboit_accum.frag"}, lines::hooks(ctx), lines::core_ao_defines(ctx));
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment counts; the depth only records coverage
         drawer_.set_blending(true);
     }
 
     void execute(pathlet::PassContext& ctx) override {
-        ctx.bind_framebuffer({"accum", "revealage"}, coverage_ ? "coverage" : "");
-        const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1}, far = 1.0f;
+        ctx.bind_framebuffer({"accum", "revealage"}, coverage_.depth_pin());
+        const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
         glClearBufferfv(GL_COLOR, 0, zero);
         glClearBufferfv(GL_COLOR, 1, one);
-        if (coverage_) glClearBufferfv(GL_DEPTH, 0, &far);
+        coverage_.clear();
         glEnable(GL_BLEND);
         glBlendFunci(0, GL_ONE, GL_ONE);                  // sum of (c a w, a w)
         glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);  // product of (1 - a)
@@ -40,7 +40,7 @@ public:
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    bool coverage_ = false;
+    lines::Coverage coverage_;
 };
 
 pathlet::PassTypeInfo wboit_accum_type() {

@@ -1,4 +1,4 @@
-// Experiment files and viewer scripts get the limits graph files get (issue 23): size, nesting
+// Experiment files and viewer scripts get the limits graph files get: size, nesting
 // and numbers, with errors naming the file and the place; the fuzz regressions of their readers
 // and of the plugin ELF check replay here too, without the fuzz build.
 #include "bench/experiment.hpp"

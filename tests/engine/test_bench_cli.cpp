@@ -389,7 +389,7 @@ TEST(BenchCli, WithoutATimeBenchAndQualityPickOneInsideTheDataAndSayWhich) {
     for (const auto& p : report["runs"][0]["passes"])
         if (p["name"] == "isl") segments = p["stats"].value("segments", -1.0);
     EXPECT_GT(segments, 100) << "the frame has lines";
-    // Given, the time is the user's: t = 9 s is outside, an error naming the span (issue 41) ...
+    // Given, the time is the user's: t = 9 s is outside, an error naming the span ...
     CliRun refused = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --time 9 --report " +
                                  (d / "refused").string());
     EXPECT_EQ(refused.code, 2) << refused.err;

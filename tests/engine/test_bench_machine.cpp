@@ -1,4 +1,4 @@
-// pathlet bench as a researcher leans on it (issue 41): --compare measured against the
+// pathlet bench as a researcher leans on it: --compare measured against the
 // machine's own speed (a busy machine flags nothing, a real slow-down is flagged), GRAPHS --out
 // writes the results, options a mode would ignore are errors, the tables stay whole through
 // `2>&1 | tee`, and the LineAO sweep hits the study's 58 samples.
@@ -167,7 +167,7 @@ double number_after(const std::string& text, const std::string& label) {
 }
 }  // namespace
 
-// One truth for fps (issue 41: the first progress line read "1/1 frames 853242.3 fps"): the
+// One truth for fps (the first progress line read "1/1 frames 853242.3 fps"): the
 // progress lines and the summary line count frames over the wall clock of the frame loop and
 // say so, the last one is the timing table's "fps (wall clock)", and none is far beyond what
 // the frames themselves allow. Plain and with --ssaa 2; the bench's summary agrees with its tables.

@@ -55,7 +55,7 @@ TEST(Cli, PassesListsTypesWithFilesAndDescribes) {
     EXPECT_EQ(r.code, 0);
     EXPECT_NE(r.out.find("radius (int, default 4, range [0, 64])"), std::string::npos) << r.out;
     r = pathlet_cli("passes --describe blurr");
-    EXPECT_EQ(r.code, 2);  // the user's typo (issue 41)
+    EXPECT_EQ(r.code, 2);  // the user's typo
     EXPECT_NE(r.err.find("did you mean 'blur'"), std::string::npos) << r.err;
     // --json: blur's own tmp texture is internal, not a pin a graph could bind.
     r = pathlet_cli("passes --json");
@@ -125,7 +125,7 @@ TEST(Cli, RenderWithMissingDataFailsWith1AndAMissingGraphWith2) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/no/such/file.vtk"), std::string::npos) << r.err;
     r = pathlet_cli("render /no/such/graph.json --data " + src("tests/engine/data/two_lines.vtk") + " --quiet");
-    EXPECT_EQ(r.code, 2) << "a graph that is not there is the user's mistake (issue 41)";
+    EXPECT_EQ(r.code, 2) << "a graph that is not there is the user's mistake";
     EXPECT_EQ(r.err.rfind("error: no graph '/no/such/graph.json'", 0), 0u) << r.err;
 }
 

@@ -1,4 +1,4 @@
-// Issue 41, a researcher's day without surprises, through the command line as a user types it:
+// A researcher's day without surprises, through the command line as a user types it:
 // a graph without "name" is named after its file; every mistake is told at once, with the fix
 // (did-you-mean for graph names, commands and pass types; a time outside the data), exit 2 and
 // nothing created; `validate` counts every error and compiles every hook; a hook's errors name
@@ -236,7 +236,7 @@ vec4 line_color_hook(vec4 rgba, LinePoint p) { return vec4(rgba.rgb, rgba.a * u_
     EXPECT_NE(r.out.find("(hook color_hook: " + d + "/keep.glsl)"), std::string::npos) << r.out;
 }
 
-// An option the chosen measure of `quality` ignores is an error naming it (issue 41's class of
+// An option the chosen measure of `quality` ignores is an error naming it (the class of
 // bench's ignored --out), before anything is loaded or rendered.
 TEST(CliMistakes, AQualityOptionTheMeasureIgnoresIsAnError) {
     const std::string d = user_dir("quality_options");

@@ -1,4 +1,4 @@
-// A newcomer's fade (issue 35), as the README teaches it: the "Writing a fade strategy" GLSL
+// A newcomer's fade, as the README teaches it: the "Writing a fade strategy" GLSL
 // block, read from README.md itself and saved as my_fade.glsl, works as printed (no #version,
 // no boilerplate) in variant 1, variant 2 and isl, through a graph that extends them and
 // through --set from the hook's own folder, and both give the same picture. Swapping variant

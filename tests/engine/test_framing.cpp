@@ -1,4 +1,4 @@
-// Figures framed for a paper (issue 41), measured from the PNGs `pathlet render` writes: at the
+// Figures framed for a paper, measured from the PNGs `pathlet render` writes: at the
 // default camera the data fills at least 80 % of the frame's limiting dimension, and through a
 // full --orbit every frame keeps it whole (no pixel of data on the border) and still fills 80 %.
 // The phantom always; with ../shared/data/real a compact data set (aneurysm pathlines, whose

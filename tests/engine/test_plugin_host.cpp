@@ -105,7 +105,7 @@ TEST(PluginSearchPath, EnvironmentAndExtraDirsComeFirst) {
     EXPECT_NE(dirs.back().find("pathlet/passes"), std::string::npos);
 }
 
-// ---- checks before a file is opened (issue 23) --------------------------------------------
+// ---- checks before a file is opened --------------------------------------------
 
 namespace {
 

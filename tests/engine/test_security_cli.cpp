@@ -1,5 +1,5 @@
 // Opening a graph, experiment or data file never runs code or reads files the user did not
-// choose (issue 23), run as a user would. The plugin folder a graph names holds a plugin whose
+// choose, run as a user would. The plugin folder a graph names holds a plugin whose
 // constructor writes a marker file: where the folder is not trusted, the marker must not appear.
 // Every run points XDG_CONFIG_HOME at a scratch folder: no test touches the real ~/.config.
 #include "cli_run.hpp"

@@ -101,3 +101,33 @@ TEST(ShaderInterlock, WithoutAnInterlockTheHookStaysItsOwnObject) {
     EXPECT_EQ(count(files.at("free.frag"), "HOOK_BODY"), 0u);
     EXPECT_EQ(count(files.at("hook.frag"), "HOOK_BODY"), 1u);
 }
+
+// The interlock may be declared with other qualifiers and over several lines; a hook's #extension
+// lines move up under the version line (after code they are an error); a uniform both declare
+// alike is declared once; a compile error of the merged object says the hook was appended.
+TEST(ShaderInterlock, AnyLayoutOfTheInterlockMergesAndTheHooksDeclarationsFitIn) {
+    runtime();
+    Dir d;
+    d.write("probe.vert", kVert);
+    d.write("hook.frag",
+            "#version 450 core\nuniform float u_fade;  // SHARED_UNIFORM\n"
+            "#extension GL_ARB_shader_group_vote : enable  // HOOK_EXTENSION\n"
+            "vec4 hook_color(vec4 c) { return c * u_fade; }  // HOOK_BODY\n");
+    std::string locked = main_frag(true);
+    const std::string plain = "layout(pixel_interlock_ordered) in;\n";
+    locked.replace(locked.find(plain), plain.size(), "layout(early_fragment_tests,\n       pixel_interlock_ordered) in;\n");
+    locked.replace(locked.find("out vec4 o;"), 11, "out vec4 o;\nuniform float u_fade;  // SHARED_UNIFORM");
+    d.write("locked.frag", locked);
+    std::string error;
+    const auto files = dumped(d, {"probe.vert", "locked.frag", "hook.frag"}, &error);
+    ASSERT_TRUE(files.count("locked.frag+hook.frag")) << "a two-line, two-qualifier interlock layout is an interlock";
+    const std::string& frag = files.at("locked.frag+hook.frag");
+    EXPECT_EQ(count(frag, "HOOK_BODY"), 1u) << frag;
+    EXPECT_EQ(count(frag, "HOOK_EXTENSION"), 1u) << frag;
+    EXPECT_LT(frag.find("HOOK_EXTENSION"), frag.find("vec4 hook_color(vec4 c);")) << "the #extension comes before any code:\n" << frag;
+    EXPECT_EQ(count(frag, "SHARED_UNIFORM"), 1u) << "the uniform both declare alike, once:\n" << frag;
+    if (!error.empty()) {  // llvmpipe lacks the extension: the message says what was merged
+        EXPECT_NE(error.find("compiled as one object"), std::string::npos) << error;
+        EXPECT_NE(error.find("hook.frag appended"), std::string::npos) << error;
+    }
+}

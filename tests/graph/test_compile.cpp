@@ -193,7 +193,7 @@ TEST(Compile, BufferSizes) {
     EXPECT_EQ(res(cg, "fixed").bytes, 4096u);
 }
 
-// Issue 25: a buffer whose size the writer's parameters decide (a volume's grid), with the
+// A buffer whose size the writer's parameters decide (a volume's grid), with the
 // graph's values, its variables and --set; no "bytes" needed in the graph.
 TEST(Compile, BufferSizedByParameters) {
     const std::string text = R"json({

@@ -1,4 +1,4 @@
-// Issue 41: a graph's name is its own (a graph without "name" is named after its file, never
+// A graph's name is its own (a graph without "name" is named after its file, never
 // after the base it extends), a graph argument that names nothing is one did-you-mean before
 // anything is done, and a file with a wrong part still has every other error reported.
 #include "fake_registry.hpp"

@@ -33,7 +33,7 @@ TEST(IoInfo, UnitsWhereKnownAndTractsWithoutTime) {
     s = describe_file(dir + "/mm.vtp");
     for (const char* needle : {"units:     length mm, time s, velocity mm/s\n", " s (span ", " mm/s\n", " (mm)\n"})
         EXPECT_NE(s.find(needle), std::string::npos) << needle << "\n" << s;
-    // --units over a file that says nothing; the velocity's "per s" names the time's unit (issue 41).
+    // --units over a file that says nothing; the velocity's "per s" names the time's unit.
     LoadOptions o;
     o.units = "m,m/s";
     s = describe_file(dir + "/none.vtp", o);

@@ -327,7 +327,7 @@ size_t count(const std::string& text, const std::string& what) {
     return n;
 }
 
-// Labels never cost the picture (issue 33): a font file that is not there gives one warning
+// Labels never cost the picture: a font file that is not there gives one warning
 // saying "not found" and the built-in font; the lines are the picture without an overlay.
 TEST(Overlay, MissingFontWarnsOnceAndKeepsThePicture) {
     const std::string font = scratch("no_such_folder") + "/DejaVuSans.ttf";  // the user's overlay.font

@@ -115,7 +115,7 @@ TEST(ProfilerReport, WallFpsSpansTheMeasuredFramesToTheFlush) {
 // A run whose frame times spread beyond p95/p5 = 1.5 is flagged in the JSON; a steady one is not.
 // The table says UNSTABLE only for a GPU's timestamps (a clock that changed): on llvmpipe's
 // finish-bracketed clocks a spread is the shared CPU's load, and the README promises the word
-// for GPUs only (issue 41).
+// for GPUs only.
 TEST(ProfilerReport, UnstableRunsAreFlaggedInTableAndJson) {
     FakeRun spread(10);  // frames 7.5 .. 14.5 ms: p95/p5 ~ 1.8
     spread.p.flush();

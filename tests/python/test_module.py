@@ -186,6 +186,22 @@ def test_quality_numbers_and_image_are_the_commands(pathlet, cli, scene, tmp_pat
         pathlet.quality("variant1_lineao", scene, time="2:2.08:0.04", size=(32, 18), rays=0)
 
 
+def test_quality_options_are_the_commands(pathlet, cli, scene):
+    """The AO measure's options come from one table: each is the command's --NAME with '_' for
+    '-', its default as the command's help gives it, and a misspelt one is a TypeError."""
+    help_text = cli("quality", "--help").stdout
+    options = pathlet.quality_options()
+    names = [o["name"] for o in options]
+    assert {"rays", "flicker_rays", "max_distance", "include_own_line", "depth_tolerance"} <= set(names)
+    for o in options:
+        assert "--" + o["name"].replace("_", "-") in help_text, o["name"]
+    assert dict((o["name"], o["default"]) for o in options)["rays"] == 256
+    with pytest.raises(TypeError, match=r"'flicker_ray'.*did you mean 'flicker_rays'"):
+        pathlet.quality("variant1_lineao", scene, flicker_ray=4)
+    with pytest.raises(TypeError, match=r"rays expects an int, got 'many'"):
+        pathlet.quality("variant1_lineao", scene, rays="many")
+
+
 def _readme_fade(root):
     """The README's "Writing a fade strategy" GLSL block, as printed."""
     text = open(os.path.join(root, "README.md")).read()

@@ -77,7 +77,7 @@ TEST(Flicker, RejectsMismatchedFrames) {
   EXPECT_THROW(measure_flicker(std::vector<FrameSample>{a}, 0.01f), std::invalid_argument);
 }
 
-// Issue 25: AO that follows the reference frame by frame has no excess flicker however much it
+// AO that follows the reference frame by frame has no excess flicker however much it
 // changes; AO that stands still has the reference's whole change as excess.
 TEST(Flicker, AgainstReferenceSeparatesChangeFromNoise) {
   std::vector<FrameSample> frames;

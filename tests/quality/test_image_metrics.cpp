@@ -1,4 +1,4 @@
-// The fidelity measures of `pathlet quality --reference` (issue 42) against independent CPU
+// The fidelity measures of `pathlet quality --reference` against independent CPU
 // computations on small synthetic images: SSIM by a direct sum over each 11x11 Gaussian window
 // (no separable filtering), RMSE/PSNR/share by hand, the flicker beyond the reference's own by
 // construction. Identical images give ssim 1 and rmse 0; known shifts give known numbers.

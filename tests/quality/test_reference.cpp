@@ -1,4 +1,4 @@
-// `pathlet quality GRAPH --reference REFGRAPH` end to end (issue 42), through the command on
+// `pathlet quality GRAPH --reference REFGRAPH` end to end, through the command on
 // llvmpipe: the exact reference against depth peeling agrees (ssim 1 within float noise, no
 // pixel over 8/255), the study's variant 2 (AO multiplied in, 32 fragments) does not, --out
 // gets one difference image and one FLIP image per frame and the last pictures, WBOIT has a FLIP

@@ -75,7 +75,7 @@ TEST(RayTracedAo, ConvergesWithRayCount) {
   EXPECT_LT(err_many * 4, err_few) << err_few / 16 << " vs " << err_many / 16;
 }
 
-// Issue 25: a point inside its own tube (where the G-buffer's tube depth puts inclined lines) is
+// A point inside its own tube (where the G-buffer's tube depth puts inclined lines) is
 // occluded by that tube's inside unless the tube's line is left out; other lines still count.
 TEST(RayTracedAo, LeavesTheOwnLineOut) {
   std::vector<Tube> tubes = two_tubes();

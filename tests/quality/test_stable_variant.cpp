@@ -42,7 +42,7 @@ TEST(StableVariant, FlickersLessThanVariant1AtNoWorseError) {
     EXPECT_GT(st.correlation, 0.0);
 }
 
-// Issue 25: the object-space AO, per pixel and per OIT fragment (its front layer), is much
+// The object-space AO, per pixel and per OIT fragment (its front layer), is much
 // closer to the ray-traced AO than LineAO on the same frames.
 TEST(VolumeAoVariants, CloserToTheRayTracedAoThanLineAo) {
     const Measures lineao = quality(std::string(PATHLET_SOURCE_DIR) + "/graphs/variant1_lineao.json");

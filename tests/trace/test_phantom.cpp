@@ -142,7 +142,7 @@ TEST(Phantom, CacheFolderIsTheUsersOwnAndARelativeXdgCacheHomeIsIgnored) {
 
 // The study phantom as generated (the first run) and as cached (every later run) is one data
 // set: the tracer emits no point whose float time repeats the last one's, which the loader
-// would drop (issue 41: 623,458 points on the first run, 623,448 after).
+// would drop (623,458 points on the first run, 623,448 after).
 TEST(Phantom, StudyGeneratedAndCachedAreTheSame) {
     const auto dir = std::filesystem::path(PATHLET_TEST_BINARY_DIR) / "phantom-cache-study";
     std::filesystem::remove_all(dir);

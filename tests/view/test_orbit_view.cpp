@@ -92,7 +92,7 @@ TEST(FileWatch, ReportsWrittenAppearingAndVanishingFilesOnce) {
 }
 
 // An "auto" slider (0 or below) shows the value the pass uses, which it reports as a stat named
-// like the parameter; a value set by hand shows as it is (issue 41: auto sliders showed 0).
+// like the parameter; a value set by hand shows as it is (auto sliders showed 0).
 TEST(PanelValues, AutoSlidersShowTheValueInUse) {
     const view::InUse in_use = {{"line_width", 1.109375}, {"overlay.speed_min", 13.86}, {"overlay.font_px", 18}};
     EXPECT_EQ(view::slider_format("line_width", 0.0, false, in_use), "auto (1.109)");

@@ -166,7 +166,7 @@ TEST(ViewCli, BrokenGraphKeepsTheLastGoodImageAndReportsTheError) {
         << "the last good graph must keep running";
 }
 
-// Graph switching follows the trust rule (issue 23): a graph naming an untrusted plugin folder
+// Graph switching follows the trust rule: a graph naming an untrusted plugin folder
 // is refused with the command that trusts it, the last good graph keeps running, and the
 // folder's plugin is never opened (its constructor would write the marker file).
 TEST(ViewCli, SwitchingToAGraphWithAnUntrustedPluginFolderLoadsNothing) {
@@ -195,7 +195,7 @@ TEST(ViewCli, SwitchingToAGraphWithAnUntrustedPluginFolderLoadsNothing) {
     fs::remove_all(d);
 }
 
-// The panels leave the overlay's time label (top left) to be read (issue 41: they covered it).
+// The panels leave the overlay's time label (top left) to be read (they covered it).
 TEST(ViewCli, ThePanelsLeaveTheTimeLabelVisible) {
     PATHLET_REQUIRE_TOOLS("Xvfb");
     test::Xvfb x;

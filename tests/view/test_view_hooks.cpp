@@ -1,4 +1,4 @@
-// The viewer and hook files (issue 24): the session watches a hook next to its graph, an edit
+// The viewer and hook files: the session watches a hook next to its graph, an edit
 // rebuilds with the new hook, a broken edit keeps the last good graph and names the hook's
 // file and line, and the hook's parameters are set like any pass parameter. Headless (the
 // session runs on any GL context; the window only shows it).

@@ -291,7 +291,7 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
     bench::ExperimentHooks hooks;
     hooks.load_data = [&](size_t d) {
         Scene scene = p.e.data.empty() ? o.data.load(true) : bench::load_data_set(p.e.data[d]);
-        // A --time outside the data would time empty frames (issue 41): the span, before any run.
+        // A --time outside the data would time empty frames: the span, before any run.
         if (!o.time.value.empty()) check_time_in_data(parse_time_range(o.time.value), o.time.value, scene, o.allow_empty);
         return scene;
     };
@@ -353,7 +353,7 @@ int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& 
     return 0;
 }
 
-// An option this mode would ignore is an error that says so (issue 41: GRAPHS --out was
+// An option this mode would ignore is an error that says so (GRAPHS --out was
 // silently ignored).
 void check_options_used(const Args& a, const BenchOptions& o) {
     const std::vector<std::string> rendering = {

@@ -11,11 +11,13 @@
 
 #include "bench/experiment.hpp"
 #include "bench/run_experiment.hpp"
+#include "ao_options.hpp"
 #include "measure.hpp"
 #include "reference.hpp"
 #include "transparency.hpp"
 
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <cstdio>
 
@@ -62,7 +64,7 @@ int run_experiment_table(Runtime& rt, const std::string& file, quality::Transpar
     return 0;
 }
 
-// --reference: fidelity of GRAPH against REFGRAPH (issue 42).
+// --reference: fidelity of GRAPH against REFGRAPH.
 int run_reference(const quality::QualityOptions& q, const std::string& reference, int ssaa, bool out_given,
                   bool transparency, const std::string& experiment, bool allow_empty, double ppd, PluginOptions& plugins,
                   SceneOptions& data) {
@@ -117,6 +119,59 @@ int run_reference(const quality::QualityOptions& q, const std::string& reference
     return 0;
 }
 
+// The option's spelling on the command line: flicker_rays -> flicker-rays.
+std::string option_name(const quality::AoOption& o) {
+    std::string name = o.name;
+    std::replace(name.begin(), name.end(), '_', '-');
+    return name;
+}
+
+int print_transparency(const quality::TransparencyResult& r, const quality::TransparencyOptions& t) {
+    if (!r.not_measured.empty()) {
+        std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());
+        return 0;
+    }
+    std::printf("%s: %zu frames %dx%d, t=%.2f..%.2f, focus: the fastest %.0f %% of segments (speed >= %.4g)\n",
+                r.graph.c_str(), r.frames, t.size.x, t.size.y, r.first_time, r.last_time, 100.0 * t.focus_share,
+                r.focus_speed);
+    std::printf("focus visibility %.4f unoccluded %.4f\n", r.focus_visibility, r.focus_unoccluded);
+    std::printf("focus ink share %.4f\n", r.focus_ink_share);
+    std::printf("context coverage %.4f\n", r.context_coverage);
+    std::printf("alpha change mean %.5f p95 %.5f\n", r.alpha_change_mean, r.alpha_change_p95);
+    std::printf("overflow %llu\n", (unsigned long long)r.overflow);
+    std::printf("pixel coverage %.4f\n", r.pixel_coverage);
+    return 0;
+}
+
+// The error image (and with --images the AO and the reference) written, the figures printed.
+int write_and_print_ao(const quality::QualityResult& r, const quality::QualityOptions& q, bool images) {
+    if (!r.not_measured.empty()) {
+        std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());
+        return 0;
+    }
+    const std::string image = q.work_dir + "/" + r.graph + "_error.png";
+    ensure_parent_dir(image);
+    write_image(image, quality::error_image(r.last, r.error.abs_error));
+    if (images) {
+        write_image(q.work_dir + "/" + r.graph + "_ao.png", quality::ao_image(r.last, r.last.ao));
+        write_image(q.work_dir + "/" + r.graph + "_reference.png", quality::ao_image(r.last, r.reference));
+    }
+
+    std::printf("%s: %zu frames %dx%d, t=%.2f..%.2f\n", r.graph.c_str(), r.frames, q.size.x, q.size.y, r.first_time,
+                r.last_time);
+    std::printf("  flicker: mean |dAO| %.5f over %zu stable pixels; geometry change %.3f of covered pixels\n",
+                r.flicker.ao_flicker, r.flicker.stable_pixels, r.flicker.geometry_change);
+    if (q.flicker_rays > 0)
+        std::printf("  ray-traced AO (%d rays/px) changes by %.5f at those pixels; the AO's change beyond it, mean "
+                    "|dAO - dRT|: %.5f\n",
+                    q.flicker_rays, r.reference_flicker.reference_change, r.reference_flicker.excess);
+    std::printf("  vs ray-traced AO (%d rays/px, reach %.3g = %.0f line widths, %zu tube segments): MAE %.4f, "
+                "correlation %.3f over %zu px\n",
+                q.rays, r.reach, q.max_distance, r.segments, r.error.mae, r.error.correlation, r.error.pixels);
+    std::printf("  error image: %s\n", image.c_str());
+    return 0;
+}
+
 int run(const std::vector<std::string>& argv) {
     Args a("quality",
            "Measures AO quality (LineAO, volume AO, or per-fragment AO under OIT) at a fixed camera over a\n"
@@ -143,18 +198,16 @@ int run(const std::vector<std::string>& argv) {
     std::string experiment, reference;
     double ppd = quality::kFlipPpd;
     int ssaa_reference = 1;
-    a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
-        .option("flicker-rays", q.flicker_rays, "N",
-                "ray-traced AO of every frame, for the flicker against the reference's own change: rays per pixel "
-                "(0: not measured)")
-        .option("max-distance", q.max_distance, "WIDTHS", "ray-traced AO: ray length in line widths")
-        .flag("include-own-line", q.own_line, "ray-traced AO: a pixel's own line occludes it too (issue 13's reference)")
-        .flag("gbuffer-point", q.gbuffer_point,
-              "ray-traced AO: rays start at the G-buffer's depth and normal (halos pushed back), not where the "
-              "pixel's ray meets its line's round tube")
-        .option("depth-tolerance", q.depth_tolerance, "D",
-                "flicker: largest change of linear depth that counts as unchanged")
-        .option("out", q.work_dir, "DIR", "folder for the per-pixel error image")
+    for (const quality::AoOption& o : quality::ao_options()) {
+        const std::string name = option_name(o);
+        std::visit(
+            [&](auto field) {
+                if constexpr (std::is_same_v<decltype(field), bool quality::QualityOptions::*>) a.flag(name, q.*field, o.doc);
+                else a.option(name, q.*field, o.metavar, o.doc);
+            },
+            o.field);
+    }
+    a.option("out", q.work_dir, "DIR", "folder for the per-pixel error image")
         .flag("images", images,
               "also write the last frame's AO and the ray-traced AO as grey images (NAME_ao.png, NAME_reference.png)")
         .flag("transparency", transparency, "measure the transparency of an OIT graph instead of its AO")
@@ -192,9 +245,9 @@ int run(const std::vector<std::string>& argv) {
     plugins.declare(a);
     data.declare(a);
     if (!a.parse(argv)) return 0;
-    // An option the chosen measure ignores is an error, not silence (issue 41).
-    const std::vector<std::string> ao_only = {"rays", "flicker-rays", "max-distance", "include-own-line",
-                                              "gbuffer-point", "depth-tolerance", "images"};
+    // An option the chosen measure ignores is an error, not silence.
+    std::vector<std::string> ao_only = {"images"};
+    for (const quality::AoOption& o : quality::ao_options()) ao_only.push_back(option_name(o));
     const std::vector<std::string> transparency_only = {"focus-share", "visible", "repeat"};
     if (!reference.empty() || ssaa_reference != 1) {
         a.unused_here(ao_only, "with --reference (it compares two graphs' pictures; no AO is ray-traced)");
@@ -232,49 +285,8 @@ int run(const std::vector<std::string>& argv) {
     if (!experiment.empty()) return run_experiment_table(rt, experiment, t, time_given, size_given, data);
     Scene scene = data.load(true);
     if (q.time) check_time_in_data(*q.time, shown(*q.time), scene, allow_empty);
-    if (transparency) {
-        const quality::TransparencyResult r = quality::measure_transparency(rt, scene, t);
-        if (!r.not_measured.empty()) {
-            std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());
-            return 0;
-        }
-        std::printf("%s: %zu frames %dx%d, t=%.2f..%.2f, focus: the fastest %.0f %% of segments (speed >= %.4g)\n",
-                    r.graph.c_str(), r.frames, t.size.x, t.size.y, r.first_time, r.last_time, 100.0 * t.focus_share,
-                    r.focus_speed);
-        std::printf("focus visibility %.4f unoccluded %.4f\n", r.focus_visibility, r.focus_unoccluded);
-        std::printf("focus ink share %.4f\n", r.focus_ink_share);
-        std::printf("context coverage %.4f\n", r.context_coverage);
-        std::printf("alpha change mean %.5f p95 %.5f\n", r.alpha_change_mean, r.alpha_change_p95);
-        std::printf("overflow %llu\n", (unsigned long long)r.overflow);
-        std::printf("pixel coverage %.4f\n", r.pixel_coverage);
-        return 0;
-    }
-    const quality::QualityResult r = quality::measure_quality(rt, scene, q);
-    if (!r.not_measured.empty()) {
-        std::printf("%s: not measured: %s\n", r.graph.c_str(), r.not_measured.c_str());
-        return 0;
-    }
-    const std::string image = q.work_dir + "/" + r.graph + "_error.png";
-    ensure_parent_dir(image);
-    write_image(image, quality::error_image(r.last, r.error.abs_error));
-    if (images) {
-        write_image(q.work_dir + "/" + r.graph + "_ao.png", quality::ao_image(r.last, r.last.ao));
-        write_image(q.work_dir + "/" + r.graph + "_reference.png", quality::ao_image(r.last, r.reference));
-    }
-
-    std::printf("%s: %zu frames %dx%d, t=%.2f..%.2f\n", r.graph.c_str(), r.frames, q.size.x, q.size.y, r.first_time,
-                r.last_time);
-    std::printf("  flicker: mean |dAO| %.5f over %zu stable pixels; geometry change %.3f of covered pixels\n",
-                r.flicker.ao_flicker, r.flicker.stable_pixels, r.flicker.geometry_change);
-    if (q.flicker_rays > 0)
-        std::printf("  ray-traced AO (%d rays/px) changes by %.5f at those pixels; the AO's change beyond it, mean "
-                    "|dAO - dRT|: %.5f\n",
-                    q.flicker_rays, r.reference_flicker.reference_change, r.reference_flicker.excess);
-    std::printf("  vs ray-traced AO (%d rays/px, reach %.3g = %.0f line widths, %zu tube segments): MAE %.4f, "
-                "correlation %.3f over %zu px\n",
-                q.rays, r.reach, q.max_distance, r.segments, r.error.mae, r.error.correlation, r.error.pixels);
-    std::printf("  error image: %s\n", image.c_str());
-    return 0;
+    if (transparency) return print_transparency(quality::measure_transparency(rt, scene, t), t);
+    return write_and_print_ao(quality::measure_quality(rt, scene, q), q, images);
 }
 
 PATHLET_COMMAND("quality", "AO quality: temporal flicker and error against ray-traced AO", run);

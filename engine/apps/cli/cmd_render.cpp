@@ -5,7 +5,7 @@
 #include "graph_errors.hpp"
 #include "output_folders.hpp"
 #include "common/progress.hpp"
-#include "renderer.hpp"
+#include "render_job.hpp"
 #include "util/atomic_file.hpp"
 #include "util/output_check.hpp"
 #include "video_writer.hpp"
@@ -60,6 +60,72 @@ public:
 private:
     struct sigaction old_int_ = {}, old_term_ = {};
 };
+
+// What the command writes besides the frames the graph captures.
+struct Extras {
+    std::string video_path, report;
+    double fps = 25;
+    std::vector<std::string> folders;  // the capture folders, marked as the graph's once written
+};
+
+// Renders the job's frames over `scene` with progress, writes the video and the report, prints
+// the timing table; 128 + the signal when interrupted.
+int render_and_report(RenderJob& job, Runtime& rt, const Scene& scene, const Extras& x) {
+    RenderOptions& run = job.options();
+    const RenderOptions& opt = run;
+    std::unique_ptr<VideoWriter> video;
+    if (!x.video_path.empty()) {
+        ensure_parent_dir(x.video_path);
+        video = std::make_unique<VideoWriter>(x.video_path, opt.size.x, opt.size.y, x.fps);
+        run.on_image = [&](const Image& img) { video->add_frame(img); };  // a writer thread, in order
+    }
+    std::unique_ptr<Progress> progress;
+    run.on_frames = [&](size_t rendered, size_t written, size_t total) {
+        if (!progress) progress = std::make_unique<Progress>("frames", total, opt.quiet);
+        // Rendered frames lead; written ones follow as the encoders catch up.
+        const bool writes = opt.write_images || video;
+        progress->update(rendered, writes ? std::to_string(written) + " written" : "");
+    };
+    StopOnSignals signals;
+    run.stop = [&] { return signals.signal() != 0; };
+    RenderResult r = job.run(scene);
+    if (const int sig = signals.signal()) {
+        video.reset();  // stops ffmpeg, removes its temp file
+        if (progress) progress->finish(std::to_string(r.frames) + " frames", r.profiler.wall_fps());
+        std::fprintf(stderr, "interrupted (%s): %zu frame(s) rendered and written%s%s\n",
+                     sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal", r.frames,
+                     r.files.empty() ? "" : (", e.g. " + r.files.back()).c_str(),
+                     x.video_path.empty() ? "" : "; the video was not written");
+        return 128 + sig;
+    }
+    if (video) {
+        video->close();
+        r.files.push_back(x.video_path);
+    }
+    if (progress)  // the rate the table's "fps (wall clock)" says
+        progress->finish(std::to_string(r.frames) + " frames" + (r.frames_read_back ? " rendered and written" : ""),
+                         r.profiler.wall_fps());
+    if (r.frames_read_back && !opt.quiet)  // where the encoders are the bottleneck, this says so
+        std::fprintf(stderr, "output: %.1f s of the frame loop went to read-back and waiting for the encoders (%.1f s after the last frame)\n",
+                     r.output_s, r.output_drain_s);
+    std::string title = graph_display_name(job.graph()) + " — " +
+                        std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y) + ", " +
+                        std::to_string(r.frames) + " frames, " + std::to_string(scene.lines.line_count()) +
+                        " lines, " + std::to_string(scene.lines.point_count()) + " points";
+    std::printf("%s", r.profiler.table(title).c_str());
+    mark_folders(x.folders, opt.graph_path);
+    if (!r.files.empty())
+        std::fprintf(stderr, "wrote %zu file(s), e.g. %s\n", r.files.size(), r.files.back().c_str());
+    if (!x.report.empty()) {
+        json meta = {{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()}, {"size", {opt.size.x, opt.size.y}},
+                     {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables},
+                     {"output_s", r.output_s}, {"output_drain_s", r.output_drain_s}};
+        write_reports(r, x.report, meta);
+    }
+    // Last: a frame a pass could not draw whole is written anyway, and said here (exit 0).
+    if (const std::string line = incomplete_frames_line(r); !line.empty()) std::fprintf(stderr, "%s\n", line.c_str());
+    return 0;
+}
 
 int run(const std::vector<std::string>& argv) {
     Args a("render",
@@ -124,13 +190,13 @@ int run(const std::vector<std::string>& argv) {
 
     Runtime rt;
     plugins.load(rt);
-    opt.sets = rt.user_sets(opt.sets);
     // Nothing is made before the inputs are known good: the graph compiles (no GL) first, the
     // output places are checked without leaving a folder, then the data and the time.
     std::vector<std::string> folders;
+    std::optional<RenderJob> job;
     try {
-        const CompiledGraph cg = compile_graph(rt.load_graph(opt.graph_path, opt.sets), rt.registry, opt.size * opt.ssaa);
-        if (opt.write_images) folders = capture_folders(cg, opt.out_dir, opt.size);
+        job.emplace(rt, opt, Runtime::SetsFrom::user);
+        if (opt.write_images) folders = capture_folders(job->compiled(), opt.out_dir, opt.size);
     } catch (const GraphError& e) {
         return report_graph_error(e, rt);
     }
@@ -138,62 +204,11 @@ int run(const std::vector<std::string>& argv) {
     if (!report.empty()) check_output_file(report + ".csv", "the timing report (--report)", false);
     if (!video_path.empty()) check_output_file(video_path, "the video (--video)", false);
     Scene scene = data.load(opt.quiet);
-    opt.time = time ? *time : default_time_range(scene);
+    job->options().time = time ? *time : default_time_range(scene);
     if (time) check_time_in_data(*time, shown(*time), scene, allow_empty);
     if (!opt.quiet) note_shared_folders(folders, opt.graph_path);
     try {
-        std::unique_ptr<VideoWriter> video;
-        if (!video_path.empty()) {
-            ensure_parent_dir(video_path);
-            video = std::make_unique<VideoWriter>(video_path, opt.size.x, opt.size.y, fps);
-            opt.on_image = [&](const Image& img) { video->add_frame(img); };  // a writer thread, in order
-        }
-        std::unique_ptr<Progress> progress;
-        opt.on_frames = [&](size_t rendered, size_t written, size_t total) {
-            if (!progress) progress = std::make_unique<Progress>("frames", total, opt.quiet);
-            // Rendered frames lead; written ones follow as the encoders catch up.
-            const bool writes = opt.write_images || video;
-            progress->update(rendered, writes ? std::to_string(written) + " written" : "");
-        };
-        StopOnSignals signals;
-        opt.stop = [&] { return signals.signal() != 0; };
-        RenderResult r = render(rt, scene, opt);
-        if (const int sig = signals.signal()) {
-            video.reset();  // stops ffmpeg, removes its temp file
-            if (progress) progress->finish(std::to_string(r.frames) + " frames", r.profiler.wall_fps());
-            std::fprintf(stderr, "interrupted (%s): %zu frame(s) rendered and written%s%s\n",
-                         sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal", r.frames,
-                         r.files.empty() ? "" : (", e.g. " + r.files.back()).c_str(),
-                         video_path.empty() ? "" : "; the video was not written");
-            return 128 + sig;
-        }
-        if (video) {
-            video->close();
-            r.files.push_back(video_path);
-        }
-        if (progress)  // the rate the table's "fps (wall clock)" says
-            progress->finish(std::to_string(r.frames) + " frames" + (r.frames_read_back ? " rendered and written" : ""),
-                             r.profiler.wall_fps());
-        if (r.frames_read_back && !opt.quiet)  // where the encoders are the bottleneck, this says so
-            std::fprintf(stderr, "output: %.1f s of the frame loop went to read-back and waiting for the encoders (%.1f s after the last frame)\n",
-                         r.output_s, r.output_drain_s);
-        std::string title = graph_display_name(parse_graph_file(opt.graph_path)) + " — " +
-                            std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y) + ", " +
-                            std::to_string(r.frames) + " frames, " + std::to_string(scene.lines.line_count()) +
-                            " lines, " + std::to_string(scene.lines.point_count()) + " points";
-        std::printf("%s", r.profiler.table(title).c_str());
-        mark_folders(folders, opt.graph_path);
-        if (!r.files.empty())
-            std::fprintf(stderr, "wrote %zu file(s), e.g. %s\n", r.files.size(), r.files.back().c_str());
-        if (!report.empty()) {
-            json meta = {{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()}, {"size", {opt.size.x, opt.size.y}},
-                         {"frames", r.frames}, {"data", scene.source}, {"variables", r.compiled.variables},
-                         {"output_s", r.output_s}, {"output_drain_s", r.output_drain_s}};
-            write_reports(r, report, meta);
-        }
-        // Last: a frame a pass could not draw whole is written anyway, and said here (exit 0).
-        if (const std::string line = incomplete_frames_line(r); !line.empty()) std::fprintf(stderr, "%s\n", line.c_str());
-        return 0;
+        return render_and_report(*job, rt, scene, {video_path, report, fps, folders});
     } catch (const GraphError& e) {
         return report_graph_error(e, rt);
     }

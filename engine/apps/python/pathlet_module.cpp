@@ -4,9 +4,9 @@
 // quality::measure_quality). What is here: NumPy in and out, errors as Python exceptions, and
 // the one GL thread (gl_thread.hpp). The friendly API is pathlet/__init__.py.
 #include "gl_thread.hpp"
+#include "module_common.hpp"
 
 #include "bench/experiment.hpp"
-#include "bench/run_experiment.hpp"
 #include "bench/report.hpp"
 #include "build_info.hpp"
 #include "common/scene_source.hpp"
@@ -17,10 +17,7 @@
 #include "io/mesh_io.hpp"
 #include "io/raw_polylines.hpp"
 #include "io/units.hpp"
-#include "measure.hpp"
-#include "reference.hpp"
-#include "transparency.hpp"
-#include "renderer.hpp"
+#include "render_job.hpp"
 #include "util/output_check.hpp"
 #include "util/text.hpp"
 #include <pathlet/text.hpp>
@@ -34,9 +31,6 @@
 #include <map>
 #include <optional>
 
-namespace py = pybind11;
-using nlohmann::json;
-
 namespace pathlet::python {
 namespace {
 
@@ -44,8 +38,6 @@ using SceneRef = std::shared_ptr<const Scene>;
 
 // ---- errors ------------------------------------------------------------------------------
 
-// Python's json module turns our JSON text into dicts (no converter to maintain).
-py::object from_json(const json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 void raise_graph_error(const GraphError& e) {
     py::list diags;
@@ -176,12 +168,6 @@ Mesh mesh_from_arrays(const Array<float>& vertices, const Array<int64_t>& triang
     return m;
 }
 
-template <class T>
-py::array to_numpy(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
-    auto* heap = new std::vector<T>(std::move(v));
-    py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-    return py::array_t<T>(shape, heap->data(), owner);
-}
 
 py::dict scene_arrays(const Scene& s) {
     const Pathlines& l = s.lines;
@@ -262,57 +248,46 @@ struct Readback {
     std::string name;
     const FormatInfo* format = nullptr;
     int width = 0, height = 0, channels = 0;
-    bool downsample = false;        // render-size textures follow --ssaa down to the picture
+    size_t frames = 0;
     std::vector<uint8_t> bytes;     // 8-bit formats
     std::vector<float> floats;      // float and depth formats
 };
 
-// The names asked for, checked against the compiled graph before any GL work: resource names
-// or pass.pin, with a did-you-mean. Empty: the graph's outputs.
-std::vector<Readback> plan_readbacks(const CompiledGraph& cg, const GraphFile& g, std::vector<std::string> names,
-                                     int ssaa) {
-    if (names.empty())
-        for (const auto& o : cg.outputs) names.push_back(o.resource);
-    std::vector<std::string> known;
-    for (const auto& r : cg.resources) known.push_back(r.name);
-    std::vector<Readback> out;
-    for (std::string name : names) {
-        const size_t dot = name.find('.');
-        if (cg.find_resource(name) < 0 && dot != std::string::npos)  // pass.pin -> the resource bound there
-            for (const auto& p : g.passes)
-                if (p.name == name.substr(0, dot) && p.outputs.count(name.substr(dot + 1)))
-                    name = p.outputs.at(name.substr(dot + 1));
-        const int r = cg.find_resource(name);
-        if (r < 0) {
-            std::string why;
-            for (const auto& c : cg.culled) why += "; pass '" + c.name + "' is culled (" + c.reason + ")";
-            std::string m = text::closest_match(name, known);
-            throw std::invalid_argument("outputs: no resource '" + name + "' in the compiled graph" +
-                                        (m.empty() ? "" : " (did you mean '" + m + "'?)") + "; its resources: " +
-                                        [&] {
-                                            std::string s;
-                                            for (const auto& k : known) s += (s.empty() ? "" : ", ") + k;
-                                            return s;
-                                        }() + why);
-        }
-        const CompiledResource& res = cg.resources[size_t(r)];
+// The names asked for (resource names or pass.pin, RenderJob resolves them) as images: a buffer
+// or an integer format is named before any GL work. Empty: the graph's outputs.
+void check_readbacks(const CompiledGraph& cg, std::vector<Readback>& rbs) {
+    for (Readback& rb : rbs) {
+        const CompiledResource& res = cg.resources[size_t(cg.resolve(rb.name))];
         const FormatInfo* f = find_format(res.internal_format);
         if (res.kind != PinKind::Texture || !f)
-            throw std::invalid_argument("outputs: '" + name + "' is a buffer, not an image");
+            throw std::invalid_argument("outputs: '" + rb.name + "' is a buffer, not an image");
         if (f->is_integer)
-            throw std::invalid_argument("outputs: '" + name + "' has the integer format " + f->name +
+            throw std::invalid_argument("outputs: '" + rb.name + "' has the integer format " + f->name +
                                         ", which has no image read-back");
-        Readback rb;
-        rb.name = name;
+        rb.name = res.name;  // pass.pin: the resource bound there names the array
         rb.format = f;
         rb.channels = f->depth ? 1 : f->channels;
-        rb.downsample = ssaa > 1 && res.width == cg.output_size.x && res.height == cg.output_size.y;
-        out.push_back(rb);
     }
-    return out;
 }
 
-py::array frames_array(Readback& rb, size_t frames, bool single) {
+// One frame's image of a read-back appended to its array (the image may carry more channels
+// than the format has: the first ones are the format's).
+void append_frame(Readback& rb, const Image& img) {
+    rb.width = img.width;
+    rb.height = img.height;
+    ++rb.frames;
+    const size_t pixels = size_t(img.width) * size_t(img.height);
+    const bool floats = rb.format->is_float || rb.format->depth;
+    for (size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < rb.channels; ++c) {
+            const float v = c < img.channels ? img.pixels[i * size_t(img.channels) + size_t(c)] : 0.0f;
+            if (floats) rb.floats.push_back(v);
+            else rb.bytes.push_back(to_unorm8(v));
+        }
+}
+
+py::array frames_array(Readback& rb, bool single) {
+    const size_t frames = rb.frames;
     std::vector<py::ssize_t> shape;
     if (!single) shape.push_back(py::ssize_t(frames));
     shape.push_back(rb.height);
@@ -354,23 +329,23 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
     {
         py::gil_scoped_release nogil;
         timings = GlThread::get().call([&](Runtime& rt) {
-            const GraphFile g = rt.load_graph(opt.graph_path, opt.sets);
-            rbs = plan_readbacks(compile_graph(g, rt.registry, opt.size * std::max(1, opt.ssaa)), g, a.outputs, opt.ssaa);
-            for (auto& rb : rbs) opt.keep.push_back(rb.name);  // out of the pool: still theirs after the frame
-            RenderResult r = render(rt, *scene, opt, [&](const Executor& ex, size_t) {
-                for (auto& rb : rbs) {
-                    const Texture t = ex.texture(rb.name);
-                    Image img = read_texture(t.id, t.width, t.height, 0, rb.channels);
-                    if (rb.downsample) img = box_downsample(img, opt.ssaa);
-                    rb.width = img.width;
-                    rb.height = img.height;
-                    if (rb.format->is_float || rb.format->depth)
-                        rb.floats.insert(rb.floats.end(), img.pixels.begin(), img.pixels.end());
-                    else
-                        for (float v : img.pixels) rb.bytes.push_back(to_unorm8(v));
+            // The graph compiled once; every asked-for image comes through the asynchronous read-back
+            // with the GPU's box filter, as the command's frames do.
+            RenderJob job(rt, opt);
+            std::vector<std::string> names = a.outputs;
+            if (names.empty())
+                for (const auto& o : job.compiled().outputs) names.push_back(o.resource);
+            rbs.resize(names.size());
+            for (size_t k = 0; k < names.size(); ++k) {
+                rbs[k].name = names[k];
+                try {
+                    job.read_back({names[k], [&rbs, k](size_t, const Image& img) { append_frame(rbs[k], img); }});
+                } catch (const std::invalid_argument& e) {
+                    throw std::invalid_argument(std::string("outputs: ") + e.what());
                 }
-                ++frames;
-            });
+            }
+            check_readbacks(job.compiled(), rbs);
+            RenderResult r = job.run(*scene, [&](const Executor&, size_t) { ++frames; });
             incomplete = incomplete_frames_line(r);
             return r.profiler.to_json({{"graph", opt.graph_path}, {"renderer", rt.gl->renderer()},
                                        {"size", {opt.size.x, opt.size.y}}, {"frames", r.frames},
@@ -380,197 +355,8 @@ py::tuple render_frames(const RenderArgs& a, const SceneRef& scene) {
     }
     if (!incomplete.empty()) std::fprintf(stderr, "%s\n", incomplete.c_str());
     py::dict arrays;
-    for (auto& rb : rbs) arrays[py::str(rb.name)] = frames_array(rb, frames, single && frames == 1);
+    for (auto& rb : rbs) arrays[py::str(rb.name)] = frames_array(rb, single && frames == 1);
     return py::make_tuple(arrays, py::cast(opt.time.times()), from_json(timings));
-}
-
-// ---- experiments and quality ----------------------------------------------------------------
-
-struct BenchArgs {
-    std::string experiment;        // a file, or
-    std::string experiment_json;   // an experiment as JSON text (pathlet.bench)
-    std::string origin = "pathlet.bench()";
-    std::vector<std::string> sizes, sets;
-    std::string time, timing = "auto", out, shard, command = "python: pathlet";
-    int frames = -1, warmup = -1;
-    bool images = false;
-};
-
-py::object run_bench(const BenchArgs& a, const std::optional<SceneRef>& scene) {
-    cli::bench::Experiment e = a.experiment.empty()
-                              ? cli::bench::parse_experiment(json::parse(a.experiment_json), a.origin)
-                              : cli::bench::load_experiment(a.experiment);
-    if (!a.sizes.empty()) e.sizes = a.sizes;
-    if (!a.time.empty()) e.time = a.time;
-    if (a.frames >= 0) e.frames = a.frames;
-    if (a.warmup >= 0) e.warmup = a.warmup;
-    e.sets.insert(e.sets.end(), a.sets.begin(), a.sets.end());
-    if (e.frames < 1) throw std::invalid_argument("frames must be >= 1");
-    for (const auto& s : e.sizes) parse_size(s);
-    if (!e.time.empty()) parse_time_range(e.time);
-    if (scene) e.data.clear();  // a scene given replaces the experiment's data sets, as --data does
-    cli::bench::ExperimentSettings how;
-    how.timing = parse_timing_backend(a.timing);
-    if (!a.shard.empty()) how.shard = cli::parse_shard(a.shard);
-    how.command = a.command;
-    how.graphs = cli::bench::graph_info(e, a.experiment);
-    if (!a.out.empty()) check_output_dir(a.out, "experiment results (out)");
-    if (a.images && !a.out.empty()) how.image_dir = a.out;
-    cli::bench::ExperimentHooks hooks;
-    hooks.load_data = [&](size_t d) {
-        if (scene) return Scene(**scene);
-        if (e.data.empty()) return load_scene(SceneSource{}, true);
-        return cli::bench::load_data_set(e.data[d]);
-    };
-    hooks.on_report = [&](const json& report, const cli::bench::RunDone*) {
-        if (!a.out.empty()) cli::bench::write_report_dir(a.out, report);
-    };
-    json report;
-    {
-        py::gil_scoped_release nogil;
-        report = GlThread::get().call([&](Runtime& rt) { return cli::bench::run_experiment(rt, e, how, hooks); });
-    }
-    return from_json(report);
-}
-
-py::dict run_quality(const std::string& graph, const std::vector<std::string>& sets, const SceneRef& scene,
-                     const std::string& time, const std::string& size, int rays, int flicker_rays, bool own_line,
-                     float max_distance, float depth_tolerance, const std::string& work_dir) {
-    quality::QualityOptions q;
-    q.flicker_rays = flicker_rays;
-    q.own_line = own_line;
-    q.graph_path = graph;
-    q.sets = sets;
-    q.size = parse_size(size);
-    if (!time.empty()) q.time = parse_time_range(time);
-    q.rays = rays;
-    q.max_distance = max_distance;
-    q.depth_tolerance = depth_tolerance;
-    q.work_dir = work_dir;
-    quality::check_quality_options(q);  // the command's limits
-    quality::QualityResult r;
-    std::vector<uint8_t> picture;
-    {
-        py::gil_scoped_release nogil;
-        r = GlThread::get().call([&](Runtime& rt) { return quality::measure_quality(rt, *scene, q); });
-        if (r.not_measured.empty()) picture = to_rgba8(quality::error_image(r.last, r.error.abs_error));
-    }
-    py::dict d;
-    d["graph"] = r.graph;
-    if (!r.not_measured.empty()) {
-        d["not_measured"] = r.not_measured;
-        return d;
-    }
-    const py::ssize_t h = r.last.height, w = r.last.width;
-    d["frames"] = r.frames;
-    d["times"] = py::make_tuple(r.first_time, r.last_time);
-    d["flicker"] = r.flicker.ao_flicker;
-    d["stable_pixels"] = r.flicker.stable_pixels;
-    d["geometry_change"] = r.flicker.geometry_change;
-    if (flicker_rays > 0) {
-        d["reference_change"] = r.reference_flicker.reference_change;
-        d["flicker_excess"] = r.reference_flicker.excess;
-    }
-    d["mae"] = r.error.mae;
-    d["correlation"] = r.error.correlation;
-    d["pixels"] = r.error.pixels;
-    d["rays"] = rays;
-    d["reach"] = r.reach;
-    d["segments"] = r.segments;
-    d["error"] = to_numpy(std::move(r.error.abs_error), {h, w});
-    d["error_image"] = to_numpy(std::move(picture), {h, w, 4});
-    d["ao"] = to_numpy(std::move(r.last.ao), {h, w});
-    d["reference"] = to_numpy(std::move(r.reference), {h, w});
-    d["line_id"] = to_numpy(std::move(r.last.line_id), {h, w});
-    return d;
-}
-
-// quality(..., reference=...): fidelity against a reference graph (issue 42).
-py::dict run_reference(const std::string& graph, const std::vector<std::string>& sets, const std::string& reference,
-                       const std::vector<std::string>& reference_sets, const SceneRef& scene, const std::string& time,
-                       const std::string& size, const std::string& out_dir, std::optional<double> ppd) {
-    quality::ReferenceOptions o;
-    if (ppd) {  // as the command's --ppd
-        if (!(*ppd > 0.0) || !std::isfinite(*ppd))
-            throw py::value_error("ppd must be a positive number of pixels per degree (got " + std::to_string(*ppd) + ")");
-        o.ppd = *ppd;
-    }
-    o.graph_path = graph;
-    o.reference_path = reference;
-    o.sets = sets;
-    o.reference_sets = reference_sets;
-    o.size = parse_size(size);
-    if (!time.empty()) o.time = parse_time_range(time);
-    o.out_dir = out_dir;
-    quality::ReferenceResult r;
-    {
-        py::gil_scoped_release nogil;
-        r = GlThread::get().call([&](Runtime& rt) { return quality::measure_against_reference(rt, *scene, o); });
-    }
-    auto metrics = [](const quality::ImageMetrics& m) {
-        py::dict d;
-        d["ssim"] = m.ssim, d["psnr"] = m.psnr, d["rmse"] = m.rmse, d["share_over"] = m.share_over;
-        d["flip"] = m.flip, d["flip_all"] = m.flip_all;
-        d["pixels"] = m.pixels;
-        return d;
-    };
-    py::dict d = metrics(r.metrics);
-    d["graph"] = r.graph;
-    d["reference"] = r.reference;
-    d["frames"] = r.frames;
-    d["times"] = py::make_tuple(r.first_time, r.last_time);
-    if (r.flicker) {
-        d["flicker_excess"] = r.flicker->excess;
-        d["flicker"] = r.flicker->test_change;
-        d["reference_change"] = r.flicker->reference_change;
-    }
-    py::list frames;
-    for (const quality::ImageMetrics& m : r.per_frame) frames.append(metrics(m));
-    d["per_frame"] = frames;
-    d["images"] = r.images;
-    d["incomplete_frames"] = r.incomplete_frames;  // of the tested graph (a reference with any is refused)
-    return d;
-}
-
-py::dict run_transparency(const std::string& graph, const std::vector<std::string>& sets, const SceneRef& scene,
-                          const std::string& time, const std::string& size, int repeat, double focus_share,
-                          double visible) {
-    quality::TransparencyOptions t;
-    t.graph_path = graph;
-    t.sets = sets;
-    t.size = parse_size(size);
-    if (!time.empty()) t.time = parse_time_range(time);
-    t.repeat = repeat;
-    t.focus_share = focus_share;
-    t.threshold = visible;
-    quality::check_transparency_options(t);  // the command's limits
-    quality::TransparencyResult r;
-    {
-        py::gil_scoped_release nogil;
-        r = GlThread::get().call([&](Runtime& rt) { return quality::measure_transparency(rt, *scene, t); });
-    }
-    py::dict d;
-    d["graph"] = r.graph;
-    if (!r.not_measured.empty()) {
-        d["not_measured"] = r.not_measured;
-        return d;
-    }
-    d["frames"] = r.frames;
-    d["times"] = py::make_tuple(r.first_time, r.last_time);
-    d["focus_visibility"] = r.focus_visibility;
-    d["focus_unoccluded"] = r.focus_unoccluded;
-    d["focus_ink_share"] = r.focus_ink_share;
-    d["context_coverage"] = r.context_coverage;
-    d["alpha_change_mean"] = r.alpha_change_mean;
-    d["alpha_change_p95"] = r.alpha_change_p95;
-    d["alpha_change_max"] = r.alpha_change_max;
-    d["max_alpha_change_per_frame"] = r.max_alpha_change_per_frame;
-    d["overflow"] = r.overflow;
-    d["pixel_coverage"] = r.pixel_coverage;
-    d["focus_speed"] = r.focus_speed;
-    d["fragments"] = r.fragments;
-    d["located"] = r.located;
-    return d;
 }
 
 }  // namespace
@@ -657,36 +443,7 @@ PYBIND11_MODULE(_pathlet, m) {
         .def_readwrite("orbit", &RenderArgs::orbit);
     m.def("render", [](const RenderArgs& a, const std::shared_ptr<Scene>& s) { return render_frames(a, s); });
 
-    py::class_<BenchArgs>(m, "BenchArgs")
-        .def(py::init<>())
-        .def_readwrite("experiment", &BenchArgs::experiment)
-        .def_readwrite("experiment_json", &BenchArgs::experiment_json)
-        .def_readwrite("origin", &BenchArgs::origin)
-        .def_readwrite("sizes", &BenchArgs::sizes)
-        .def_readwrite("sets", &BenchArgs::sets)
-        .def_readwrite("time", &BenchArgs::time)
-        .def_readwrite("timing", &BenchArgs::timing)
-        .def_readwrite("out", &BenchArgs::out)
-        .def_readwrite("shard", &BenchArgs::shard)
-        .def_readwrite("command", &BenchArgs::command)
-        .def_readwrite("frames", &BenchArgs::frames)
-        .def_readwrite("warmup", &BenchArgs::warmup)
-        .def_readwrite("images", &BenchArgs::images);
-    m.def("bench", [](const BenchArgs& a, const std::optional<std::shared_ptr<Scene>>& s) {
-        return run_bench(a, s ? std::optional<SceneRef>(*s) : std::nullopt);
-    });
-    m.def("quality", [](const std::string& graph, const std::vector<std::string>& sets, const std::shared_ptr<Scene>& s,
-                        const std::string& time, const std::string& size, int rays, int flicker_rays, bool own_line,
-                        float max_distance, float depth_tolerance, const std::string& work_dir) {
-        return run_quality(graph, sets, s, time, size, rays, flicker_rays, own_line, max_distance, depth_tolerance,
-                           work_dir);
-    });
-    m.def("quality_reference", &run_reference);
-    m.def("transparency", [](const std::string& graph, const std::vector<std::string>& sets, const std::shared_ptr<Scene>& s,
-                             const std::string& time, const std::string& size, int repeat, double focus_share,
-                             double visible) {
-        return run_transparency(graph, sets, s, time, size, repeat, focus_share, visible);
-    });
+    bind_measures(m);
     // The files and tables `pathlet bench` writes, from a report (results.json's content).
     m.def("summary_csv", [](const std::string& report) { return cli::bench::summary_csv(json::parse(report)); });
     m.def("frames_csv", [](const std::string& report) { return cli::bench::frames_csv(json::parse(report)); });

@@ -1,5 +1,5 @@
 #pragma once
-// AO error against a reference (issue 13, measure b): mean absolute error and Pearson
+// AO error against a reference: mean absolute error and Pearson
 // correlation over the pixels covered by a line, plus a per-pixel |error| image.
 #include "frame_sample.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Temporal flicker (issue 13, measure a): how much the AO changes from frame to frame at pixels
+// Temporal flicker: how much the AO changes from frame to frame at pixels
 // whose geometry barely changed, set against how much the geometry itself changed.
 #include "frame_sample.hpp"
 
@@ -17,7 +17,7 @@ FlickerStats measure_flicker(const FrameSample& prev, const FrameSample& cur, fl
 // Mean over consecutive pairs, weighted by stable pixels; needs at least two frames.
 FlickerStats measure_flicker(const std::vector<FrameSample>& frames, float depth_tolerance);
 
-// Flicker against a reference (issue 25): AO that follows the scene must change where the
+// Flicker against a reference: AO that follows the scene must change where the
 // scene's occlusion changes (pathlets advance every frame), so the plain measure cannot tell a
 // faithful AO from a noisy one. Over the same stable pixels: how much the reference AO changes,
 // and the mean |dAO - dRef|, the change that is not the reference's.

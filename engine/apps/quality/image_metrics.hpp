@@ -1,5 +1,5 @@
 #pragma once
-// Image fidelity against a reference picture (issue 42: transparency techniques against the exact
+// Image fidelity against a reference picture (transparency techniques against the exact
 // reference), over a mask of the pixels that matter (those either picture covers):
 //   ssim   windowed SSIM of Wang, Bovik, Sheikh & Simoncelli (IEEE TIP 2004) on luminance:
 //          an 11x11 Gaussian window (sigma 1.5, normalised), K1 0.01, K2 0.03, dynamic range 1,

@@ -30,7 +30,7 @@ struct QualityOptions {
     float max_distance = 10;        // ray length in line widths
     float depth_tolerance = 0.002f; // flicker: largest change of linear depth that counts as unchanged
     int flicker_rays = 256;         // ray-traced AO of every frame, for the flicker against its change (0: off)
-    // Whether a pixel's own line occludes it in the ray-traced AO (issue 13's reference). Off:
+    // Whether a pixel's own line occludes it in the ray-traced AO. Off:
     // the G-buffer's point lies inside its own tube wherever the line is inclined to the view
     // (the kit moves the tube's depth along the view axis, not the normal: 17 % of the
     // phantom's pixels at t = 9 s), and every ray from there met the tube's inside.

@@ -1,5 +1,5 @@
 #pragma once
-// Ray-traced ambient occlusion reference (issue 13, measure c): the visible pathlets as round
+// Ray-traced ambient occlusion reference: the visible pathlets as round
 // tubes (Embree round linear curves with the line radius), cosine-weighted hemisphere rays of a
 // maximum distance. AO = fraction of rays that escape, the same convention as the screen-space
 // term (1 = open). Cosine weighting makes the plain hit fraction the cosine-weighted estimate.

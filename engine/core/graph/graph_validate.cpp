@@ -91,19 +91,21 @@ std::vector<std::vector<int>> find_cycles(const std::vector<std::vector<int>>& d
 
 }  // namespace
 
-void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
-    const GraphFile& g = *idx.g;
-    auto error = [&](const std::string& ptr, const std::string& msg) { diags.push_back({g.path, ptr, msg}); };
+namespace {
 
-    // Resources bound to outputs of passes whose type is unknown: their writer exists, it just
-    // could not be checked, so "no pass writes it" would only repeat the unknown-type error.
-    std::set<std::string> unknown_written;
-    for (size_t i = 0; i < g.passes.size(); ++i)
-        if (!idx.types[i])
-            for (const auto& [pin, res] : g.passes[i].outputs) unknown_written.insert(res);
-    auto written_by_unknown = [&](int r) { return unknown_written.count(idx.resources[r].name) > 0; };
+// The checks of one graph's index, each a small member; every problem goes to `diags`.
+class Validator {
+public:
+    Validator(const GraphIndex& idx, std::vector<Diagnostic>& diags) : idx(idx), g(*idx.g), diags(diags) {
+        // Resources bound to outputs of passes whose type is unknown: their writer exists, it just
+        // could not be checked, so "no pass writes it" would only repeat the unknown-type error.
+        for (size_t i = 0; i < g.passes.size(); ++i)
+            if (!idx.types[i])
+                for (const auto& [pin, res] : g.passes[i].outputs) unknown_written.insert(res);
+    }
 
-    for (size_t i = 0; i < g.passes.size(); ++i) {
+    // A pass: its name, enabled, parameters and pins against its type.
+    void pass(size_t i) {
         const PassDecl& p = g.passes[i];
         if (int first = idx.pass_by_name.at(p.name); first != int(i))
             error(p.pointer + "/name", "duplicate pass name '" + p.name + "' (first at " + g.passes[first].pointer + ")");
@@ -112,7 +114,7 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
         if (std::string err = resolve_enabled(g, p.enabled, enabled); !err.empty()) error(p.pointer + "/enabled", err);
 
         const PassTypeInfo* t = idx.types[i];
-        if (!t) continue;  // unknown type: reported by build_index; its params and pins cannot be checked
+        if (!t) return;  // unknown type: reported by build_index; its params and pins cannot be checked
 
         std::vector<std::string> param_names;
         for (const auto& d : t->params) param_names.push_back(d.name);
@@ -178,59 +180,84 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
                                                  "' is not connected");
     }
 
-    // Resources: one writer each, a known format/size for what gets written.
-    for (size_t r = 0; r < idx.resources.size(); ++r) {
-        const ResourceDecl& res = idx.resources[r];
-        const auto& ws = idx.writers[r];
-        for (size_t k = 1; k < ws.size(); ++k)
-            error(ws[k].second->pointer,
-                  "resource '" + res.name + "' is already written by pass '" + g.passes[ws[0].first].name + "' (at " +
-                      ws[0].second->pointer + "); one writer per resource: write a new resource, or use history ('" +
-                      res.name + "@prev') for read-modify-write");
-        // A writer of the wrong kind was reported above; its pin says nothing about this resource.
-        if (!ws.empty() && ws[0].second->decl->kind != res.kind) continue;
-        const std::string where = res.implicit || res.pointer.empty() ? (ws.empty() ? res.pointer : ws[0].second->pointer)
-                                                                      : res.pointer;
-        if (res.kind == PinKind::Texture) {
-            if (!ws.empty() && idx.resolved_format(int(r)).empty())
-                error(where, "format of '" + res.name + "' is unknown: pin '" + ws[0].second->pin + "' of '" +
-                                 idx.types[ws[0].first]->type + "' accepts any; add \"format\" to the resource");
-            if (res.size) {
-                glm::ivec2 size;
-                int at = -1;
-                std::string err = resolve_size(idx, int(r), {1024, 1024}, size, &at);
-                if (!err.empty() && at == int(r)) error(res.pointer + "/size", err);
+    void resources() {
+        // Resources: one writer each, a known format/size for what gets written.
+        for (size_t r = 0; r < idx.resources.size(); ++r) {
+            const ResourceDecl& res = idx.resources[r];
+            const auto& ws = idx.writers[r];
+            for (size_t k = 1; k < ws.size(); ++k)
+                error(ws[k].second->pointer,
+                      "resource '" + res.name + "' is already written by pass '" + g.passes[ws[0].first].name + "' (at " +
+                          ws[0].second->pointer + "); one writer per resource: write a new resource, or use history ('" +
+                          res.name + "@prev') for read-modify-write");
+            // A writer of the wrong kind was reported above; its pin says nothing about this resource.
+            if (!ws.empty() && ws[0].second->decl->kind != res.kind) continue;
+            const std::string where = res.implicit || res.pointer.empty() ? (ws.empty() ? res.pointer : ws[0].second->pointer)
+                                                                          : res.pointer;
+            if (res.kind == PinKind::Texture) {
+                if (!ws.empty() && idx.resolved_format(int(r)).empty())
+                    error(where, "format of '" + res.name + "' is unknown: pin '" + ws[0].second->pin + "' of '" +
+                                     idx.types[ws[0].first]->type + "' accepts any; add \"format\" to the resource");
+                if (res.size) {
+                    glm::ivec2 size;
+                    int at = -1;
+                    std::string err = resolve_size(idx, int(r), {1024, 1024}, size, &at);
+                    if (!err.empty() && at == int(r)) error(res.pointer + "/size", err);
+                }
+            } else if (!ws.empty() && !res.bytes && !res.bytes_per_pixel && !ws[0].second->decl->bytes &&
+                       !ws[0].second->decl->bytes_per_pixel && !ws[0].second->decl->bytes_from_params) {
+                error(where, "size of buffer '" + res.name + "' is unknown: add \"bytes\" or \"bytes_per_pixel\"");
             }
-        } else if (!ws.empty() && !res.bytes && !res.bytes_per_pixel && !ws[0].second->decl->bytes &&
-                   !ws[0].second->decl->bytes_per_pixel && !ws[0].second->decl->bytes_from_params) {
-            error(where, "size of buffer '" + res.name + "' is unknown: add \"bytes\" or \"bytes_per_pixel\"");
         }
     }
 
-    if (g.outputs.empty())
-        error("/outputs", "the graph has no outputs, so every pass would be culled; add {\"resource\": \"...\"}");
-    for (const auto& o : g.outputs) {
-        const std::string ptr = o.pointer + "/resource";
-        if (split_ref(o.resource).prev) {
-            error(ptr, "an output cannot be last frame's content ('" + o.resource + "')");
-            continue;
-        }
-        std::string err;
-        int r = idx.resolve(o.resource, err, /*allow_internal=*/true);
-        if (r < 0) {
-            if (!err.empty()) error(ptr, err);
-        } else if (idx.writer(r) < 0 && !idx.resources[r].persistent && !written_by_unknown(r)) {
-            error(ptr, "output '" + o.resource + "' is never written by any pass");
+    void outputs() {
+        if (g.outputs.empty())
+            error("/outputs", "the graph has no outputs, so every pass would be culled; add {\"resource\": \"...\"}");
+        for (const auto& o : g.outputs) {
+            const std::string ptr = o.pointer + "/resource";
+            if (split_ref(o.resource).prev) {
+                error(ptr, "an output cannot be last frame's content ('" + o.resource + "')");
+                continue;
+            }
+            std::string err;
+            int r = idx.resolve(o.resource, err, /*allow_internal=*/true);
+            if (r < 0) {
+                if (!err.empty()) error(ptr, err);
+            } else if (idx.writer(r) < 0 && !idx.resources[r].persistent && !written_by_unknown(r)) {
+                error(ptr, "output '" + o.resource + "' is never written by any pass");
+            }
         }
     }
 
-    for (const auto& cycle : find_cycles(pass_dependencies(idx))) {
-        std::vector<std::string> names;
-        for (int p : cycle) names.push_back(g.passes[p].name);
-        names.push_back(names.front());
-        error(g.passes[cycle.front()].pointer, "passes form a cycle: " + join(names, " -> ") +
-                                                   " (use a history resource and '@prev' to read last frame's result)");
+    void cycles() {
+        for (const auto& cycle : find_cycles(pass_dependencies(idx))) {
+            std::vector<std::string> names;
+            for (int p : cycle) names.push_back(g.passes[p].name);
+            names.push_back(names.front());
+            error(g.passes[cycle.front()].pointer, "passes form a cycle: " + join(names, " -> ") +
+                                                       " (use a history resource and '@prev' to read last frame's result)");
+        }
     }
+
+private:
+    void error(const std::string& ptr, const std::string& msg) { diags.push_back({g.path, ptr, msg}); }
+    bool written_by_unknown(int r) const { return unknown_written.count(idx.resources[r].name) > 0; }
+
+    const GraphIndex& idx;
+    const GraphFile& g;
+    std::vector<Diagnostic>& diags;
+    std::set<std::string> unknown_written;
+};
+
+}  // namespace
+
+void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
+    Validator v(idx, diags);
+    for (size_t i = 0; i < idx.g->passes.size(); ++i) v.pass(i);
+    v.resources();
+    v.outputs();
+    v.cycles();
     check_agreement(idx, diags);
 }
 

@@ -11,7 +11,7 @@
 namespace pathlet::phantom {
 
 // Bump when the generator's output changes, so stale caches are never reused.
-static constexpr const char* kPhantomVersion = "v2";  // v2: no points of one float time (issue 41)
+static constexpr const char* kPhantomVersion = "v2";  // v2: no points of one float time
 
 std::string phantom_cache_path(const std::string& preset) {
     phantom_preset(preset);  // validates the name

@@ -1,4 +1,4 @@
-// A fade strategy as one GLSL file in every line pipeline (issue 24): a colour hook with its
+// A fade strategy as one GLSL file in every line pipeline: a colour hook with its
 // parameters declared in the shader (@param), named by the graph next to it, drawn by the
 // opaque G-buffer (gbuffer), the OIT lists (fill_list, real transparency) and ISL; its
 // parameters validated, settable and bound; bad hooks named by file and line. Two straight

@@ -366,6 +366,7 @@ PinDecl make_pin(const std::string& name, PinDir dir, PinKind kind, const std::s
     p.mips = o.mips;
     p.scale = o.scale;
     p.same_params = o.same_params;
+    p.view = kind == PinKind::Buffer ? o.view : 0;
     p.doc = doc;
     return p;
 }

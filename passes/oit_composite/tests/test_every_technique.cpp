@@ -1,4 +1,4 @@
-// One fade hook through every transparency technique (issue 42, item 3): every shipped
+// One fade hook through every transparency technique: every shipped
 // variant2_* graph has the variable color_hook, and `--set color_hook=FILE` (here through
 // Runtime::user_sets, as the command line does it) puts the same GLSL file into each. A hook
 // that paints every line blue (no colour map of the default graphs makes blue) must turn each

@@ -1,4 +1,4 @@
-// scripts/transparency-techniques.py, the one table of issue 42 (speed, bytes a pixel and
+// scripts/transparency-techniques.py, the one table of the transparency techniques (speed, bytes a pixel and
 // fidelity of each technique against the exact reference), run as a user runs it on a small
 // experiment: WBOIT and MBOIT against variant2_exact on the small phantom. The table must hold
 // one row a technique with the reference's SSIM 1 and the others' in (0, 1), the bytes a pixel

@@ -1,4 +1,4 @@
-// Object-space line AO (issue 25) on tiny synthetic scenes, real GL (llvmpipe): line_density's
+// Object-space line AO on tiny synthetic scenes, real GL (llvmpipe): line_density's
 // volume and volume_ao's estimate against the ray-traced reference of `pathlet quality`, the
 // per-fragment estimate under OIT against the per-pixel one, bad parameters, the memory cap.
 #include "executor.hpp"

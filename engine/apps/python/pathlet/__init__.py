@@ -33,7 +33,7 @@ except ImportError as _e:  # the pure-Python parts (pathlet.plot) still work
 
 __all__ = [
     "Scene", "Graph", "Rendered", "Results", "phantom", "load", "from_arrays", "render", "bench",
-    "run_experiment", "quality", "close", "closed", "gl_renderer", "build_info", "GraphError", "DataError",
+    "run_experiment", "quality", "quality_options", "close", "closed", "gl_renderer", "build_info", "GraphError", "DataError",
     "PassError", "GlError", "ClosedError",
 ]
 
@@ -424,16 +424,18 @@ def run_experiment(path, scene=None, *, out=None, sizes=None, time=None, frames=
 
 # ---- quality ----------------------------------------------------------------------------------
 
-def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=256,
-            include_own_line=False, max_distance=10.0, depth_tolerance=0.002, transparency=False,
-            focus_share=0.1, visible=0.05, repeat=1, reference=None, out=None, ppd=None):
+def quality(graph, scene, time=None, size=(320, 180), *, transparency=False,
+            focus_share=0.1, visible=0.05, repeat=1, reference=None, out=None, ppd=None, **ao_options):
     """``pathlet quality`` as numbers (time None: 11 frames 0.04 s apart from the middle of the
     data's span, said on stderr; the study phantom's 9:9.4:0.04): flicker (mean |dAO| where the same line stays),
     geometry_change, with flicker_rays > 0 reference_change and flicker_excess (how much the
     ray-traced AO changes at those pixels, and the AO's change beyond it), mae and correlation
     against a ray-traced AO of the last frame, and the images error (|error| per pixel),
     error_image (RGBA, as the command writes it), ao, reference and line_id. A graph without
-    AO gives {"graph", "not_measured": why}.
+    AO gives {"graph", "not_measured": why}. The ray-traced AO's options are the command's,
+    with '_' for '-' (rays=256, flicker_rays=256, max_distance=10, include_own_line=False,
+    gbuffer_point=False, depth_tolerance=0.002): pathlet.quality_options() lists them with their
+    defaults and what each does.
 
     transparency=True: ``pathlet quality --transparency`` instead, for an OIT graph:
     focus_visibility, focus_unoccluded, focus_ink_share, context_coverage, alpha_change_mean,
@@ -441,7 +443,7 @@ def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=
     (focus: the fastest focus_share of the data's segments; a context segment counts as seen
     with ink per footprint >= visible; repeat frames per time, > 1 for a frozen view).
 
-    reference=GRAPH: ``pathlet quality GRAPH --reference REF`` instead (issue 42): both rendered
+    reference=GRAPH: ``pathlet quality GRAPH --reference REF`` instead: both rendered
     over the same times, size and camera (graph's sets for both, the reference's own sets after
     them), compared over the pixels either covers: ssim (windowed, Wang et al. 2004, 11x11
     Gaussian on luminance), psnr, rmse, share_over (fraction more than 8/255 apart), flip (mean
@@ -462,9 +464,13 @@ def quality(graph, scene, time=None, size=(320, 180), *, rays=256, flicker_rays=
         return _core().transparency(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), int(repeat),
                                     float(focus_share), float(visible))
     with tempfile.TemporaryDirectory(prefix="pathlet_quality_") as work:
-        return _core().quality(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), int(rays),
-                               int(flicker_rays), bool(include_own_line), float(max_distance),
-                               float(depth_tolerance), work)
+        return _core().quality(g.path, list(g.sets), scene._h, _time_text(time), _size_text(size), ao_options, work)
+
+
+def quality_options():
+    """The ray-traced AO measure's options of quality(): a list of {"name", "default", "doc"}
+    (the command's --NAME with '-' for '_')."""
+    return _core().quality_options()
 
 
 # ---- the context --------------------------------------------------------------------------------

@@ -239,6 +239,29 @@ public:
     ScopedScissor& operator=(const ScopedScissor&) = delete;
 };
 
+// Where any fragment of the lines landed, said once for its writers and its readers. A pass
+// that draws every fragment (depth test ALWAYS: the transparency techniques' accumulation and
+// list passes) may write the optional depth output "coverage", depth < 1 where a fragment
+// landed; the passes after it (resolves, composite, wall) read it so their fullscreen work runs
+// only there and inside the lines' screen rectangle.
+class Coverage {
+public:
+    static constexpr const char* kPin = "coverage";
+    Coverage() = default;
+    explicit Coverage(const PassContext& ctx);  // connected or not, asked once in setup()
+    bool connected() const { return connected_; }
+    // The depth pin to hand bind_framebuffer: "coverage" where connected, "" where not.
+    std::string depth_pin() const { return connected_ ? kPin : ""; }
+    // A writer, after bind_framebuffer(..., depth_pin()): nothing covered yet (depth 1).
+    void clear() const;
+    // A reader, after bind_framebuffer(..., depth_pin()): `prog` (fullscreen.vert) on the covered
+    // pixels inside screen_rect where connected, on every pixel where not.
+    void draw(PassContext& ctx, ShaderProgram& prog) const;
+
+private:
+    bool connected_ = false;
+};
+
 // `rect` (pixels of level 0) on mip `level`: scaled down and rounded outwards, plus pad_px
 // texels of that level, clamped to `size` (the level's size).
 glm::ivec4 rect_at_level(glm::ivec4 rect, int level, int pad_px, glm::ivec2 size);

@@ -81,6 +81,10 @@ struct PinOptions {
     // writers that declares it, and the graph compiler refuses a graph where they differ,
     // naming both passes. "*": every parameter of this pass.
     std::vector<std::string> same_params = {};
+    // Buffer pins: also a buffer texture of this format (GL_RGBA32UI, ...) that `u_<pin>`, a
+    // samplerBuffer or imageBuffer in the pass's programs, is bound to by declaration, as a
+    // texture pin's sampler is (the view follows the buffer when it grows).
+    GLenum view = 0;
 };
 // The size of a buffer output: {.bytes = 1024}, {.bytes_per_pixel = 16}, or decided by the
 // pass's resolved parameters, {.from_params = [](const json& p) { return ...; }} (a volume's grid).
@@ -105,6 +109,7 @@ struct PinDecl {
                                  // engine allocates and pools it like any transient, the pass uses it by name
     bool persistent = false;     // internal: kept across frames, never pooled
     std::vector<std::string> same_params;  // inputs: PinOptions::same_params
+    GLenum view = 0;                       // buffer pins: PinOptions::view
     std::string doc;
     // Buffer outputs sized by the pass's resolved parameters (e.g. a volume's grid); takes
     // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
@@ -375,6 +380,10 @@ public:
 
     // A full-screen triangle: bind a program first; vertex shader from shaders/fullscreen.vert.
     void draw_fullscreen();
+    // `prog` (fullscreen.vert) over the pixels of `rect` only (scissored), the draw's
+    // dispatch_fullscreen; with `depth_pin`, the depth bind_framebuffer attached, only on
+    // geometry (depth < 1). Leaves scissor and depth state off.
+    void draw_fullscreen(ShaderProgram& prog, glm::ivec4 rect, const std::string& depth_pin = "");
     // The same, but only where the bound framebuffer's depth attachment (a G-buffer depth)
     // is < 1, i.e. on geometry: the early depth test skips background pixels, which on
     // llvmpipe skips whole empty tiles. `prog` must use fullscreen.vert. Leaves depth state off.
