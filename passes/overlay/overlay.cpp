@@ -281,7 +281,8 @@ private:
     // Returns the swatches drawn.
     size_t bundle_legend(glm::ivec2 size, float m, glm::vec4 ink) {
         const float sw = std::round(0.8f * float(font_px_)), gap = std::round(0.3f * float(font_px_));
-        const float row = std::round(1.4f * sw), x1 = float(size.x) - m, x0 = x1 - sw;
+        // A row fits a name's descenders and underscores, not only the swatch.
+        const float row = std::round(std::max(1.4f * sw, 1.3f * float(font_px_))), x1 = float(size.x) - m, x0 = x1 - sw;
         const float top = m + float(unit_label_.height) + gap;
         const size_t fit = size_t(std::max(1.0f, std::floor((float(size.y) - m - top) / row)));
         const size_t n = bundle_labels_.size();

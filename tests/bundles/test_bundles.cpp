@@ -232,7 +232,7 @@ TEST(Bundles, BadChoicesOfFilesAreErrorsNamingThemAndNothingIsWritten) {
             SCOPED_TRACE(graph + c.data);
             const CliRun r = pathlet_cli("render " + graph + "--data " + c.data + " --size 64x36 --out " + out);
             EXPECT_EQ(r.code, 2) << r.err;
-            EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+            EXPECT_EQ(r.err.rfind("\nerror: ") + 1, r.err.find("error: ")) << "one error, the last line:\n" << r.err;
             EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
             for (const auto& n : c.names) EXPECT_NE(r.err.find(n), std::string::npos) << n << "\n" << r.err;
             EXPECT_FALSE(fs::exists(out)) << "a failed render left " << out;
@@ -261,7 +261,7 @@ TEST(Bundles, EachBundleDrawsInItsPaletteColour) {
     for (size_t b = 0; b < 8; ++b) EXPECT_GT(pixels[b], 50u) << s.lines.bundle_names[b] << " is not on screen";
     // Lit with LineAO (tracts_lineao, hard edges, no overlay): each bundle's pixels are its
     // palette colour darkened, the same hue: the nearest palette hue is its own.
-    const Frame lit = render(s, "tracts_lineao", {"colormap=bundle", "aa=false", "overlay=false", "halo=0"}, size, {"final"});
+    const Frame lit = render(s, "tracts_lineao", {"colormap=bundle", "aa=false", "overlay=false", "gbuffer.halo=0"}, size, {"final"});
     size_t lit_pixels = 0, other_hue = 0;
     auto hue_distance = [](glm::vec3 px, glm::vec3 q) {
         const float k = glm::dot(px, q) / glm::dot(q, q);  // px ~ k q under a grey light

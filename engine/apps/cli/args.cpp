@@ -157,6 +157,7 @@ const Args::Opt& Args::find_given(const std::string& name) const {
 bool Args::parse(const std::vector<std::string>& argv) {
     size_t next_pos = 0;
     bool rest_seen = false, options_end = false;
+    given_.clear();
     // Read the whole line first, convert after: a value given twice is named before either is
     // judged, and a list option knows where it ends.
     std::vector<std::pair<const Opt*, std::string>> values;

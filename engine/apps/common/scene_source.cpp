@@ -18,9 +18,12 @@ namespace pathlet {
 
 namespace {
 
-// One file, repaired; its warnings on stderr. Nothing to draw is an error, not a blank picture
-// (pathlet info still shows the numbers).
-Pathlines load_one(const std::string& file, const io::LoadOptions& opts) {
+// The repair's note that a file holds streamlines: one line for all bundles, not one a file.
+bool streamlines_note(const std::string& warning) { return warning.rfind("no time and no velocity", 0) == 0; }
+
+// One file, repaired; its warnings on stderr (but the streamlines note, for a bundle). Nothing
+// to draw is an error, not a blank picture (pathlet info still shows the numbers).
+Pathlines load_one(const std::string& file, const io::LoadOptions& opts, bool bundle = false) {
     io::LoadReport rep;
     Pathlines lines = io::load_pathlines(file, opts, &rep);
     if (lines.line_count() == 0) {
@@ -31,7 +34,8 @@ Pathlines load_one(const std::string& file, const io::LoadOptions& opts) {
                         (dropped.empty() ? std::string("the file holds no lines") : text::join(dropped, "; ")) +
                         "); 'pathlet info " + text::shell_quote(file) + "' shows what it holds");
     }
-    for (const auto& w : rep.warnings) std::fprintf(stderr, "warning: %s: %s\n", file.c_str(), w.c_str());
+    for (const auto& w : rep.warnings)
+        if (!(bundle && streamlines_note(w))) std::fprintf(stderr, "warning: %s: %s\n", file.c_str(), w.c_str());
     return lines;
 }
 
@@ -42,8 +46,11 @@ Pathlines load_bundles(const std::vector<std::string>& files, const io::LoadOpti
     each.pseudo_time = false;
     each.streamlines = opts.streamlines || opts.pseudo_time;
     std::vector<LoadedBundle> parts;
-    for (const std::string& f : files) parts.push_back({f, load_one(f, each)});
+    for (const std::string& f : files) parts.push_back({f, load_one(f, each, true)});
     Pathlines joined = join_bundles(std::move(parts));
+    if (joined.timeless)
+        std::fprintf(stderr, "note: %zu files of streamlines without time (tracts): drawn whole; --pseudo-time animates "
+                             "them along their arc length\n", files.size());
     if (opts.pseudo_time && joined.timeless) {
         joined.timeless = false;
         std::fprintf(stderr, "note: --pseudo-time: the streamlines animate along their pseudo-time\n");
