@@ -226,6 +226,7 @@ TEST(Bundles, BadChoicesOfFilesAreErrorsNamingThemAndNothingIsWritten) {
         {"'" + a + "/*.trk'", "the pattern matches no file", {a + "/*.trk"}},
         {a + "/cst.tck " + b + "/cst.tck", "two data files named 'cst'", {a + "/cst.tck", b + "/cst.tck"}},
         {a + "/cst.tck " + timed, "files of mixed kinds", {a + "/cst.tck", timed}},
+        {a + "/cst.tck tracts_lineao", "looks like a graph: --data takes every argument", {"tracts_lineao"}},
     };
     for (const Case& c : cases)
         for (const std::string graph : {"", "isl "}) {  // chosen by the data, or given

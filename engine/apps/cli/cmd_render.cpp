@@ -104,7 +104,9 @@ int run(const std::vector<std::string>& argv) {
         .example("pathlet render graphs/lineao_debug.json --time 9 --set lineao.samples=58",
                  "every intermediate map of one LineAO frame, with 58 samples")
         .example("pathlet render --data flow.vtp --mesh aorta.glb --time 0:18:0.04 --video flow.mp4",
-                 "your own data, 25 fps, as a video");
+                 "your own data, 25 fps, as a video")
+        .example("pathlet render --set colormap=bundle --data bundles/",
+                 "tracts, a file per bundle (a folder, files or a glob): tracts_lineao, a colour per bundle");
     if (!a.parse(argv)) return 0;
     if (video_path.empty()) a.unused_here({"fps"}, "without --video FILE (images have no frame rate)");
 

@@ -65,6 +65,9 @@ std::vector<std::string> data_files(const std::vector<std::string>& given) {
         std::vector<std::string> some;
         if (fs::is_directory(g)) some = folder_files(g);
         else if (!fs::exists(g) && g.find_first_of("*?[") != std::string::npos) some = glob_files(g);
+        else if (!fs::exists(g) && (fs::path(g).extension() == ".json" || !fs::path(g).has_extension()))
+            throw DataChoiceError(g + ": no such data file; it looks like a graph: --data takes every argument up to "
+                                      "the next option, so give the graph before it (pathlet render GRAPH --data FILE...)");
         else some = {g};  // a file that is not there is the loader's error, with its name
         files.insert(files.end(), some.begin(), some.end());
     }

@@ -29,7 +29,8 @@ struct DataChoiceError : DataError {
 
 // The files `given` names, in order: a folder gives its data files sorted by name, a pattern
 // with * ? or [ that is not a file gives its matches sorted (what a shell would have expanded).
-// DataChoiceError for an empty folder, a pattern matching nothing or two files of one stem.
+// DataChoiceError for an empty folder, a pattern matching nothing, two files of one stem or a
+// missing file that looks like a graph (a graph name after --data's files).
 std::vector<std::string> data_files(const std::vector<std::string>& given);
 
 // The extensions a folder's data files have (pathlines and tracts).
