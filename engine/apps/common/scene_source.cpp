@@ -59,8 +59,9 @@ Pathlines load_bundles(const std::vector<std::string>& files, const io::LoadOpti
 }
 
 std::string source_name(const std::vector<std::string>& given, size_t files) {
-    if (files == 1 || given.size() == 1) return given.front() + (files > 1 ? " (" + std::to_string(files) + " files)" : "");
-    return given.front() + " and " + std::to_string(given.size() - 1) + " more (" + std::to_string(files) + " files)";
+    const std::string count = " [" + std::to_string(files) + " files]";
+    if (files == 1 || given.size() == 1) return given.front() + (files > 1 ? count : "");
+    return given.front() + " and " + std::to_string(given.size() - 1) + " more" + count;
 }
 
 }  // namespace
