@@ -1,6 +1,7 @@
 // Speed colour maps for line passes. `which` follows the `colormap` enum of the line passes:
 // 0 green_red (the study: green slow -> yellow -> red fast), 1 viridis, 2 coolwarm, 3 grey,
-// 4 direction (not a map of speed: the line kit colours by the tangent, colormap_direction).
+// 4 direction (not a map of speed: the line kit colours by the tangent, colormap_direction),
+// 5 bundle (not a map of speed either: a colour per bundle, the data file a line came from).
 // u is the normalised speed in [0,1]; values outside are clamped.
 #ifndef PATHLET_COLORMAP_GLSL
 #define PATHLET_COLORMAP_GLSL
@@ -10,6 +11,7 @@ const int COLORMAP_VIRIDIS = 1;
 const int COLORMAP_COOLWARM = 2;
 const int COLORMAP_GREY = 3;
 const int COLORMAP_DIRECTION = 4;
+const int COLORMAP_BUNDLE = 5;
 
 // Direction colouring (tractography's convention): RGB = |dx|, |dy|, |dz| of the unit
 // tangent in world (data) axes, so x runs red, y green, z blue whichever way a line goes.
@@ -21,6 +23,23 @@ bool colormap_is_direction(int which) {
 #endif
     return which == COLORMAP_DIRECTION;
 }
+
+bool colormap_is_bundle(int which) {
+#ifdef LINE_COLORMAP
+    which = LINE_COLORMAP;
+#endif
+    return which == COLORMAP_BUNDLE;
+}
+
+// Bundle colours: matplotlib's tab10 (Tableau's categorical palette), in its order; bundle k
+// takes entry k mod 10. The legend's swatches read the same entries (overlay.frag).
+const int BUNDLE_PALETTE_SIZE = 10;
+const vec3 BUNDLE_PALETTE[BUNDLE_PALETTE_SIZE] = vec3[BUNDLE_PALETTE_SIZE](
+    vec3(0.121569, 0.466667, 0.705882), vec3(1.000000, 0.498039, 0.054902), vec3(0.172549, 0.627451, 0.172549),
+    vec3(0.839216, 0.152941, 0.156863), vec3(0.580392, 0.403922, 0.741176), vec3(0.549020, 0.337255, 0.294118),
+    vec3(0.890196, 0.466667, 0.760784), vec3(0.498039, 0.498039, 0.498039), vec3(0.737255, 0.741176, 0.133333),
+    vec3(0.090196, 0.745098, 0.811765));
+vec3 colormap_bundle(uint k) { return BUNDLE_PALETTE[k % uint(BUNDLE_PALETTE_SIZE)]; }
 
 // Green -> yellow -> red through saturated mid tones (no muddy olive in the middle).
 vec3 colormap_green_red(float u) {

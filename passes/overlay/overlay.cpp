@@ -2,7 +2,8 @@
 // time ("t = 4.50 s", top left; no unit where the data's time has none) and the speed legend
 // (the colour bar with 3-5 round values on ticks and the data's velocity unit, beside the data:
 // right of where its box projects, centred on it, inside the frame; for the direction colour
-// map an x/y/z key at the right edge), sized from the output height so it is crisp and
+// map an x/y/z key at the right edge, for the bundle colour map the bundles' names beside their
+// colours), sized from the output height so it is crisp and
 // legible from 270 lines to 4K. Streamlines without time get neither clock nor
 // speed. Text is rasterised with FreeType (text_raster.*); with show = false the image passes
 // through bit for bit. Labels never cost the picture: a font that is missing or cannot be used
@@ -136,6 +137,7 @@ public:
         legend_min_ = smin;
         legend_max_ = smax;
         direction_ = p.s("colormap") == "direction";
+        bundle_ = p.s("colormap") == "bundle";
         timeless_ = scene.cpu().lines.timeless;  // streamlines: no time, no speed to show
         const Ticks ticks = nice_ticks(smin, smax);
         ticks_.clear();
@@ -147,13 +149,20 @@ public:
         }
         unit_label_.set(raster_->render(direction_ ? "direction" : unit.empty() ? "speed" : "speed (" + unit + ")"));
         for (int k = 0; k < 3; ++k) axis_label_[k].set(raster_->render(std::string(1, char('x' + k))));
+        bundle_labels_.clear();
+        if (bundle_) {
+            unit_label_.set(raster_->render("bundle"));
+            std::vector<std::string> names = scene.cpu().lines.bundle_names;
+            if (names.empty()) names = {"lines"};
+            for (const std::string& n : names) bundle_labels_.emplace_back().set(raster_->render(n));
+        }
     }
 
     void execute(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
         pathlet::Texture src = ctx.texture("color"), dst = ctx.texture("final");
         glCopyImageSubData(src.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.id, GL_TEXTURE_2D, 0, 0, 0, 0, dst.width, dst.height, 1);
-        if (!timeless_ && !direction_) {  // the range the legend shows (or would): tests check it against the data
+        if (!timeless_ && !direction_ && !bundle_) {  // the range the legend shows (or would): tests check it against the data
             ctx.stat("legend_min", double(legend_min_));
             ctx.stat("legend_max", double(legend_max_));
             ctx.stat("speed_min", double(legend_min_));  // the values in use where the parameters say auto
@@ -181,7 +190,9 @@ public:
             time_label_.set(raster_->render(buf));
             text(time_label_, m, m, ink);
         }
-        if (p.b("legend") && direction_) {
+        if (p.b("legend") && bundle_) {
+            ctx.stat("legend_bundles", double(bundle_legend(size, m, ink)));
+        } else if (p.b("legend") && direction_) {
             // Direction colours (RGB = |dx|, |dy|, |dz|): a swatch per axis under the title.
             const float sw = std::round(0.8f * float(font_px_)), gap = std::round(0.3f * float(font_px_));
             const float x1 = float(size.x) - m, x0 = x1 - sw;
@@ -265,6 +276,33 @@ private:
         }
         return {mn, mx};
     }
+    // The bundles' names, each left of a swatch of its colour (colormap_bundle in the shader), in
+    // bundle order down the right edge under the title; as many as fit, then "+N more".
+    // Returns the swatches drawn.
+    size_t bundle_legend(glm::ivec2 size, float m, glm::vec4 ink) {
+        const float sw = std::round(0.8f * float(font_px_)), gap = std::round(0.3f * float(font_px_));
+        // A row fits a name's descenders and underscores, not only the swatch.
+        const float row = std::round(std::max(1.4f * sw, 1.3f * float(font_px_))), x1 = float(size.x) - m, x0 = x1 - sw;
+        const float top = m + float(unit_label_.height) + gap;
+        const size_t fit = size_t(std::max(1.0f, std::floor((float(size.y) - m - top) / row)));
+        const size_t n = bundle_labels_.size();
+        const size_t shown = n <= fit ? n : fit - 1;
+        float y = std::round(std::max(top, 0.5f * float(size.y) - 0.5f * float(n <= fit ? n : fit) * row));
+        text(unit_label_, x1 - float(unit_label_.width), y - gap - float(unit_label_.height), ink);
+        for (size_t k = 0; k < shown; ++k, y += row) {
+            solid(x0 - 1, y - 1, x1 + 1, y + sw + 1, ink);
+            prog_->set("u_mode", 3);
+            prog_->set("u_bundle", int(k));
+            rect(x0, y, x1, y + sw);
+            const Label& l = bundle_labels_[k];
+            text(l, x0 - gap - float(l.width), y + 0.5f * sw - 0.6f * float(l.ascent), ink);
+        }
+        if (shown < n) {
+            more_label_.set(raster_->render("+" + std::to_string(n - shown) + " more"));
+            text(more_label_, x1 - float(more_label_.width), y + 0.5f * sw - 0.6f * float(more_label_.ascent), ink);
+        }
+        return shown;
+    }
     void rect(float x0, float y0, float x1, float y1) {
         prog_->set("u_rect", glm::vec4(x0, y0, x1, y1));
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
@@ -291,10 +329,12 @@ private:
     int font_px_ = 0;
     Label time_label_, unit_label_, axis_label_[3];
     std::vector<Label> tick_labels_;  // grows only on setup; Label owns its texture
+    std::vector<Label> bundle_labels_;  // the bundles' names, in bundle order
+    Label more_label_;
     std::vector<float> ticks_;
     std::string time_unit_;
     float legend_min_ = 0, legend_max_ = 0;
-    bool direction_ = false, timeless_ = false;
+    bool direction_ = false, bundle_ = false, timeless_ = false;
 };
 
 }  // namespace
@@ -307,7 +347,8 @@ PATHLET_PLUGIN("overlay", {
                   .param_bool("time", true, "the time label \"t = 4.50 s\", top left")
                   .param_bool("legend", true, "the speed colour bar with 3-5 round values and the unit, beside the data")
                   .param_enum("colormap", "green_red", pathlet::lines::colormaps(),
-                              "the line pass's colour map (tie both to one graph variable); direction shows an x/y/z key")
+                              "the line pass's colour map (tie both to one graph variable); direction shows an x/y/z key, "
+                              "bundle the bundles' names beside their colours")
                   .param_float("speed_min", 0.0, -1.0, 1e9,
                                "speed at the bar's bottom, as the line pass's; <= 0: the data's 1st percentile",
                                {.at_most = "speed_max", .automatic_at_or_below = 0.0})

@@ -159,13 +159,13 @@ class Cli:
         return r.stdout + r.stderr
 
     def options(self, command):
-        """{option: takes a value} from 'pathlet COMMAND --help'."""
+        """{option: takes a value ("list": every argument up to the next option)} from 'pathlet COMMAND --help'."""
         if command not in self.helps:
             opts = {}
             for line in self.run([command, "--help"]).split("\n"):
                 m = re.match(r"^  (-\w, )?(--[\w-]+)( \S+)?", line)
                 if m:
-                    opts[m.group(2)] = bool(m.group(3))
+                    opts[m.group(2)] = "list" if (m.group(3) or "").endswith("...") else bool(m.group(3))
                     if m.group(1):
                         opts[m.group(1)[:2]] = bool(m.group(3))
             opts["--help"] = False
@@ -250,6 +250,9 @@ def check_command(cli, rel, n, tokens):
                 value = args[k] if k < len(args) else None
                 if value is None:
                     problem(rel, n, f"'pathlet {command} {name}' needs a value")
+            if opts[name] == "list" and not eq:
+                while k + 1 < len(args) and not args[k + 1].startswith("-"):
+                    k += 1
             if name == "--set" and value is not None:
                 sets.append(value)
         else:

@@ -149,3 +149,32 @@ TEST(Args, TimeRangesAndTimingBackendsConvertWithTheirOwnMessages) {
     EXPECT_EQ(usage_error(a, {"--time", "5:1"}), "--time '5:1': END is before START");
     EXPECT_EQ(usage_error(a, {"--timing", "fast"}), "--timing expects auto, gpu, finish or cpu, got 'fast'");
 }
+
+TEST(Args, ASingleValuedOptionGivenTwiceIsAUsageErrorNamingBothValues) {
+    Bound b;
+    EXPECT_EQ(usage_error(b.a, {"--size", "640x360", "--size=1280x720"}), "--size given twice: 640x360 and 1280x720");
+    EXPECT_EQ(usage_error(b.a, {"-n", "a", "--name", "b"}), "--name given twice: a and b");  // a short name is its option
+    // Named before either value is judged: the second given is the message, not a malformed value.
+    EXPECT_EQ(usage_error(b.a, {"--frames", "x", "--frames", "y"}), "--frames given twice: x and y");
+    // Repeatable options and flags stay repeatable.
+    Bound ok;
+    ASSERT_TRUE(ok.a.parse({"--set", "a=1", "--set", "b=2", "--quiet", "--quiet"}));
+    EXPECT_EQ(ok.sets, (std::vector<std::string>{"a=1", "b=2"}));
+}
+
+TEST(Args, AListOptionTakesEveryArgumentUpToTheNextOption) {
+    std::vector<std::string> data, sets;
+    std::string graph;
+    bool quiet = false;
+    Args a("render", "");
+    a.positional("GRAPH", graph, "", false).list("data", data, "FILE", "").multi("set", sets, "N=V", "").flag("quiet", quiet, "");
+    ASSERT_TRUE(a.parse({"isl", "--data", "a.tck", "b.tck", "--quiet", "--data=c.tck", "--data", "d.tck", "--set", "x=1"}));
+    EXPECT_EQ(data, (std::vector<std::string>{"a.tck", "b.tck", "c.tck", "d.tck"}));
+    EXPECT_EQ(graph, "isl");
+    EXPECT_TRUE(quiet);
+    std::vector<std::string> none;
+    Args b("render", "");
+    b.list("data", none, "FILE", "");
+    EXPECT_EQ(usage_error(b, {"--data", "--quiet"}), "--data needs a value (FILE)");
+    EXPECT_NE(b.help().find("--data FILE...  (repeatable)"), std::string::npos) << b.help();
+}

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <regex>
+#include <sstream>
 
 namespace {
 
@@ -255,4 +257,35 @@ TEST(CliMistakes, AQualityOptionTheMeasureIgnoresIsAnError) {
         EXPECT_EQ(r.err.find("data:"), std::string::npos) << "refused before the data is loaded\n" << r.err;
     }
     EXPECT_TRUE(entries(d).empty()) << "nothing made";
+}
+
+// Every command's single-valued options, from its own --help: given twice, the usage error
+// names the option and both values (the option declared once, in Args, for every command).
+TEST(CliMistakes, EveryCommandRefusesASingleValuedOptionGivenTwice) {
+    const CliRun top = pathlet_cli("--help");
+    std::vector<std::string> commands;
+    std::istringstream lines(top.out.substr(0, top.out.find("first steps:")));
+    for (std::string l; std::getline(lines, l);)
+        if (l.rfind("  ", 0) == 0 && l.size() > 2 && std::islower(static_cast<unsigned char>(l[2])))
+            commands.push_back(l.substr(2, l.find(' ', 2) - 2));
+    ASSERT_GE(commands.size(), 10u) << top.out;
+    size_t checked = 0;
+    for (const std::string& cmd : commands) {
+        SCOPED_TRACE(cmd);
+        const CliRun help = pathlet_cli(cmd + " --help");
+        // "  --size WxH" or "  -o, --out DIR": a value, not "(repeatable)", not a flag.
+        const std::regex valued(R"(^  (?:-\w, )?--([a-z-]+) [A-Z][^ ]*$)");
+        std::istringstream h(help.out);
+        std::string option;
+        for (std::string l; option.empty() && std::getline(h, l);) {
+            std::smatch m;
+            if (std::regex_match(l, m, valued)) option = m[1];
+        }
+        if (option.empty()) continue;  // a command without single-valued options
+        const CliRun r = pathlet_cli(cmd + " --" + option + " first --" + option + " second");
+        EXPECT_EQ(r.code, 2) << r.err;
+        EXPECT_NE(r.err.find("--" + option + " given twice: first and second"), std::string::npos) << r.err;
+        ++checked;
+    }
+    EXPECT_GE(checked, 10u);
 }

@@ -366,3 +366,35 @@ def test_render_lists_the_frames_that_lost_fragments_as_the_command_does(pathlet
     assert err and err[-1] == "incomplete frames: 4 of 4 (0, 1, 2, 3)", err[-3:]
     pathlet.render("variant2_oit", scene, time="2:2.3:0.1", size=(96, 72))
     assert "incomplete frames" not in capfd.readouterr().err
+
+
+def _write_tck(path, lines):
+    """An MRtrix .tck file of float32 tracts (the layout pathlet's own writer uses)."""
+    body = b"".join(np.asarray(l, "<f4").tobytes() + np.full(3, np.nan, "<f4").tobytes() for l in lines)
+    head = f"mrtrix tracks\ndatatype: Float32LE\ncount: {len(lines)}\nfile: . "
+    offset = len(head) + 10 + 5
+    path.write_bytes((head + f"{offset:010d}\nEND\n").encode() + body + np.full(3, np.inf, "<f4").tobytes())
+
+
+def test_several_files_a_folder_or_a_glob_load_as_bundles(pathlet, cli, tmp_path):
+    d = tmp_path / "tracts"
+    d.mkdir()
+    _write_tck(d / "ventral.tck", [[[0, 0, 0], [1, 0, 0], [2, 0.5, 0]], [[0, 1, 0], [1, 1, 0], [2, 1.5, 0]]])
+    _write_tck(d / "dorsal.tck", [[[0, 0, 2], [1, 0, 2], [2, 0, 3]]])
+    files = [d / "ventral.tck", d / "dorsal.tck"]
+    s = pathlet.load(files)
+    assert s.bundles == ["dorsal", "ventral"], "bundles in name order, whatever the list's"
+    assert s.line_count == 3 and s.timeless
+    assert pathlet.load(d).bundles == s.bundles
+    assert pathlet.load(str(d / "*.tck")).bundles == s.bundles
+    assert pathlet.default_graph(files) == "tracts_lineao"
+    # The same picture as the command's, coloured by bundle.
+    g = pathlet.Graph("tracts_lineao").set(colormap="bundle")
+    got = pathlet.render(g, s, time=0, size=(96, 54)).rgba
+    cli("render", "tracts_lineao", "--set", "colormap=bundle", "--time", "0", "--size", "96x54",
+        "--out", str(tmp_path / "out"), "--quiet", "--data", *map(str, files))
+    assert np.array_equal(got, read_png(tmp_path / "out" / "tracts_lineao" / "00000.png"))
+    (tmp_path / "other").mkdir()
+    _write_tck(tmp_path / "other" / "dorsal.tck", [[[0, 0, 0], [1, 1, 1]]])
+    with pytest.raises(pathlet.DataError, match="two data files named 'dorsal'"):
+        pathlet.load([d, tmp_path / "other" / "dorsal.tck"])

@@ -21,7 +21,7 @@ using nlohmann::json;
 Scene load_data_set(const DataSet& ds) {
     SceneSource src;
     src.phantom = ds.phantom;
-    src.data = ds.file;
+    if (!ds.file.empty()) src.data = {ds.file};
     src.mesh = ds.mesh;
     return load_scene(src, true);
 }

@@ -92,6 +92,11 @@ Args& Args::multi(const std::string& name, std::vector<std::string>& out, const 
     return add({name, value_name, help, "", Kind::Multi, [&out](const std::string& v) { out.push_back(v); }});
 }
 
+Args& Args::list(const std::string& name, std::vector<std::string>& out, const std::string& value_name,
+                 const std::string& help) {
+    return add({name, value_name, help, "", Kind::List, [&out](const std::string& v) { out.push_back(v); }});
+}
+
 Args& Args::short_name(char c) {
     if (opts_.empty()) throw DeclarationError("pathlet " + command_ + ": short_name before any option");
     for (const auto& o : opts_)
@@ -137,9 +142,26 @@ void Args::assign(const Opt& o, const std::string& value) const {
     }
 }
 
+const Args::Opt& Args::find_given(const std::string& name) const {
+    if (const Opt* o = find(name)) return *o;
+    std::vector<std::string> names, longer;
+    for (const auto& c : opts_) {
+        names.push_back(c.name);
+        if (name.size() >= 3 && c.name.rfind(name, 0) == 0) longer.push_back(c.name);
+    }
+    std::string best = text::closest_match(name, names);
+    if (best.empty() && longer.size() == 1) best = longer[0];  // --plugin: --plugin-dir
+    throw UsageError("unknown option --" + name + (best.empty() ? "" : " (did you mean --" + best + "?)"));
+}
+
 bool Args::parse(const std::vector<std::string>& argv) {
     size_t next_pos = 0;
     bool rest_seen = false, options_end = false;
+    given_.clear();
+    // Read the whole line first, convert after: a value given twice is named before either is
+    // judged, and a list option knows where it ends.
+    std::vector<std::pair<const Opt*, std::string>> values;
+    auto is_option = [](const std::string& s) { return s.size() > 1 && s[0] == '-'; };
     for (size_t i = 0; i < argv.size(); ++i) {
         std::string a = argv[i];
         if (!options_end && a == "--") {
@@ -165,28 +187,33 @@ bool Args::parse(const std::vector<std::string>& argv) {
                 name = name.substr(0, eq);
                 inline_value = true;
             }
-            const Opt* o = find(name);
-            if (!o) {
-                std::vector<std::string> names, longer;
-                for (const auto& c : opts_) {
-                    names.push_back(c.name);
-                    if (name.size() >= 3 && c.name.rfind(name, 0) == 0) longer.push_back(c.name);
-                }
-                std::string best = text::closest_match(name, names);
-                if (best.empty() && longer.size() == 1) best = longer[0];  // --plugin: --plugin-dir
-                throw UsageError("unknown option --" + name + (best.empty() ? "" : " (did you mean --" + best + "?)"));
-            }
-            given_.push_back(o->name);
-            if (o->kind == Kind::Flag) {
+            const Opt& o = find_given(name);
+            if (o.kind == Kind::Flag) {
                 if (inline_value) throw UsageError("--" + name + " takes no value");
-                o->set("");
+                given_.push_back(o.name);
+                values.emplace_back(&o, "");
+                continue;
+            }
+            if (o.kind == Kind::List) {
+                size_t taken = 0;
+                if (inline_value) values.emplace_back(&o, value), ++taken;
+                for (; i + 1 < argv.size() && !is_option(argv[i + 1]); ++taken) values.emplace_back(&o, argv[++i]);
+                if (!taken) throw UsageError("--" + name + " needs a value (" + o.value_name + ")");
+                given_.push_back(o.name);
                 continue;
             }
             if (!inline_value) {
-                if (i + 1 >= argv.size()) throw UsageError("--" + name + " needs a value (" + o->value_name + ")");
+                if (i + 1 >= argv.size()) throw UsageError("--" + name + " needs a value (" + o.value_name + ")");
                 value = argv[++i];
             }
-            assign(*o, value);
+            if (o.kind == Kind::Value && given(o.name)) {
+                std::string first;
+                for (const auto& [opt, v] : values)
+                    if (opt == &o) first = v;
+                throw UsageError("--" + o.name + " given twice: " + first + " and " + value);
+            }
+            given_.push_back(o.name);
+            values.emplace_back(&o, value);
             continue;
         }
         if (next_pos >= pos_.size()) throw UsageError("unexpected argument '" + a + "'");
@@ -194,6 +221,7 @@ bool Args::parse(const std::vector<std::string>& argv) {
         if (pos_[next_pos].rest) rest_seen = true;
         else ++next_pos;
     }
+    for (const auto& [o, v] : values) assign(*o, v);
     for (size_t k = next_pos; k < pos_.size(); ++k)
         if (pos_[k].required && !(pos_[k].rest && rest_seen)) throw UsageError("missing " + pos_[k].name);
     return true;
@@ -224,8 +252,8 @@ std::string Args::help() const {
         s << "\noptions:\n";
         for (const auto& o : opts_) {
             s << "  " << (o.short_name ? std::string("-") + o.short_name + ", " : std::string()) << "--" << o.name;
-            if (o.kind != Kind::Flag) s << " " << o.value_name;
-            if (o.kind == Kind::Multi) s << "  (repeatable)";
+            if (o.kind != Kind::Flag) s << " " << o.value_name << (o.kind == Kind::List ? "..." : "");
+            if (o.kind == Kind::Multi || o.kind == Kind::List) s << "  (repeatable)";
             s << "\n      " << o.help;
             if (o.kind == Kind::Value && !o.def.empty()) s << " [default: " << o.def << "]";
             s << "\n";

@@ -4,7 +4,7 @@
 // option names, so an option it did not declare cannot be asked for.
 //
 // Errors: a bad command line (unknown option, missing or malformed value, a value out of its
-// range) throws UsageError, which main() prints with the command's name and exits 2. A bad
+// range, a single-valued option given twice) throws UsageError, which main() prints with the command's name and exits 2. A bad
 // declaration (an option declared twice, a short name used twice) throws DeclarationError: a
 // programming error (exit 70), caught by the test that runs every command's --help.
 #pragma once
@@ -103,6 +103,10 @@ public:
     // A repeatable option (--set a=b --set c=d): every value, in order.
     Args& multi(const std::string& name, std::vector<std::string>& out, const std::string& value_name,
                 const std::string& help);
+    // An option that takes every argument after it up to the next option (--data a.tck b.tck,
+    // what a shell glob expands to), repeatable: every value, in order.
+    Args& list(const std::string& name, std::vector<std::string>& out, const std::string& value_name,
+               const std::string& help);
     // A one-letter alias for the option declared last: .option("output", ...).short_name('o')
     Args& short_name(char c);
     // Positional arguments, in order. `rest` takes every remaining one (at least one).
@@ -110,7 +114,9 @@ public:
     Args& rest(const std::string& name, std::vector<std::string>& out, const std::string& help);
     Args& example(const std::string& line, const std::string& what);
 
-    // Returns false when --help was asked for (help already printed to stdout).
+    // Returns false when --help was asked for (help already printed to stdout). The whole command
+    // line is read before any value is converted, so a single-valued option given twice is
+    // named ("--size given twice: 640x360 and 1280x720") whatever its values.
     bool parse(const std::vector<std::string>& argv);
     // After parse: whether the command line gave the option --name.
     bool given(const std::string& name) const;
@@ -121,7 +127,7 @@ public:
     std::string help() const;
 
 private:
-    enum class Kind { Value, Flag, Multi };
+    enum class Kind { Value, Flag, Multi, List };
     struct Opt {
         std::string name, value_name, help, def;
         Kind kind = Kind::Value;
@@ -135,6 +141,7 @@ private:
     };
     Args& add(Opt o);
     const Opt* find(const std::string& name) const;
+    const Opt& find_given(const std::string& name) const;  // an option the command line names, else UsageError
     void assign(const Opt& o, const std::string& value) const;
 
     std::string command_, summary_;

@@ -182,13 +182,13 @@ int run(const std::vector<std::string>& argv) {
            "With --transparency, what an OIT graph's transparency shows instead, on the fragments of its lists:\n"
            "focus visibility (ink per footprint of the fastest segments, and their unoccluded share), focus ink\n"
            "share, context coverage, the change of each segment's opacity between frames and list overflow.");
-    std::string graph = "variant1_lineao";
+    std::string graph;  // "": the data's default graph
     PluginOptions plugins;
     SceneOptions data;
     quality::QualityOptions q;
     q.size = {320, 180};
     q.work_dir = "out/quality";
-    a.positional("GRAPH", graph, "graph file or shipped graph name (default: variant1_lineao)", false)
+    a.positional("GRAPH", graph, "graph file or shipped graph name (default: variant1_lineao; tracts_lineao for tracts, said on stderr)", false)
         .option("time", q.time, "A:B:STEP",
                 "animation times (frames at A, A+STEP, ... <= B); default: 11 frames 0.04 s apart from the middle of "
                 "the data's time span (the study phantom's 9:9.4:0.04)");
@@ -260,7 +260,7 @@ int run(const std::vector<std::string>& argv) {
         a.unused_here({"ppd"}, "without --reference (FLIP compares two graphs' pictures)");
         a.unused_here(transparency_only, "without --transparency");
     }
-    q.graph_path = resolve_graph_path(graph);
+    q.graph_path = resolve_graph_path(graph.empty() ? data.default_graph(false) : graph);
     t.graph_path = q.graph_path;
     t.sets = q.sets;
     t.size = q.size;

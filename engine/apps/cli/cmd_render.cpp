@@ -133,14 +133,14 @@ int run(const std::vector<std::string>& argv) {
            "prints the per-pass timing table. Without arguments it renders the built-in aortic-arch\n"
            "phantom (generated on first use and cached) through the LineAO graph variant1_lineao.");
     RenderOptions opt;
-    std::string graph = "variant1_lineao", report, video_path;
+    std::string graph, report, video_path;
     std::optional<TimeRange> time;
     std::optional<Shard> shard;
     double fps = 25;
     bool no_images = false, allow_empty = false;
     PluginOptions plugins;
     SceneOptions data;
-    a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
+    a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao; tracts_lineao for tracts, said on stderr)", false)
         .option("time", time, "T|A:B|A:B:STEP",
                 "animation times in seconds (frames at A, A+STEP, ... <= B); default: the data's whole time span in 0.25 s steps");
     declare_size(a, opt.size, "output size in pixels");
@@ -170,10 +170,13 @@ int run(const std::vector<std::string>& argv) {
         .example("pathlet render graphs/lineao_debug.json --time 9 --set lineao.samples=58",
                  "every intermediate map of one LineAO frame, with 58 samples")
         .example("pathlet render --data flow.vtp --mesh aorta.glb --time 0:18:0.04 --video flow.mp4",
-                 "your own data, 25 fps, as a video");
+                 "your own data, 25 fps, as a video")
+        .example("pathlet render --set colormap=bundle --data bundles/",
+                 "tracts, a file per bundle (a folder, files or a glob): tracts_lineao, a colour per bundle");
     if (!a.parse(argv)) return 0;
     if (video_path.empty()) a.unused_here({"fps"}, "without --video FILE (images have no frame rate)");
 
+    if (graph.empty()) graph = data.default_graph(opt.quiet);
     opt.graph_path = resolve_graph_path(graph);  // an unknown name: one line, exit 2, before anything else
     if (shard) opt.shard_index = shard->index, opt.shard_count = shard->count;
     try {

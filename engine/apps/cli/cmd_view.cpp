@@ -12,7 +12,7 @@ namespace pathlet::cli {
 namespace {
 
 struct ViewOptions {
-    std::string graph = "variant1_lineao";
+    std::string graph;  // "": the data's default graph
     view::ViewSettings view;
     std::vector<std::string> sets;
     bool allow_empty = false;
@@ -20,7 +20,7 @@ struct ViewOptions {
     SceneOptions data;
 
     void declare(Args& a) {
-        a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao)", false)
+        a.positional("GRAPH", graph, "graph file, or the name of a shipped graph (default: variant1_lineao; tracts_lineao for tracts, said on stderr)", false)
             .option("time", view.time, "T", "start paused at this animation time in seconds (default: play from the start)")
             .flag("allow-empty-frames", allow_empty,
                   "start at the --time asked for even where it lies outside the data's time span (an empty frame); "
@@ -58,7 +58,7 @@ int run(const std::vector<std::string>& argv) {
         .example("xvfb-run -a pathlet view --exit-after 10 --screenshot shot.png", "headless, for tests");
     if (!a.parse(argv)) return 0;
     if (o.view.exit_after < 0) throw UsageError("--exit-after must be >= 0");
-    const std::string graph_path = resolve_graph_path(o.graph);
+    const std::string graph_path = resolve_graph_path(o.graph.empty() ? o.data.default_graph(false) : o.graph);
     view::Viewer viewer(o.view);  // the window first: no display fails before anything loads
     Runtime rt;
     o.plugins.load(rt);

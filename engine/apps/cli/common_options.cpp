@@ -53,7 +53,10 @@ io::LoadOptions ArrayOptions::load_options() const {
 }
 
 void SceneOptions::declare(Args& a) {
-    a.option("data", data, "FILE", "pathlines: .vtk (legacy), .vtp, .pathlet, text rows 'x y z x y z ...', or tracts .trk/.tck")
+    a.list("data", data, "FILE",
+           "pathlines: .vtk (legacy), .vtp, .pathlet, text rows 'x y z x y z ...', or tracts .trk/.tck; several files, "
+           "a folder (its data files) or a glob are joined, each file a bundle named after it (colormap=bundle); "
+           "takes every argument up to the next option")
         .option("mesh", mesh, "FILE", "vessel wall: .gltf/.glb, .stl or .obj (optional)")
         .option("phantom", phantom, "study|small", "built-in aortic-arch phantom used when --data is not given");
     arrays.declare(a);

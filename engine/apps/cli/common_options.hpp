@@ -38,10 +38,12 @@ struct ArrayOptions {
     io::LoadOptions load_options() const;  // UsageError for a negative --time-step or malformed --units
 };
 
-// The data a command draws: --data FILE (pathlines or tracts), --mesh FILE (vessel wall),
-// --phantom PRESET (the default when --data is not given), and the array options.
+// The data a command draws: --data FILE... (pathlines or tracts; several files, folders or globs
+// are joined, a bundle per file), --mesh FILE (vessel wall), --phantom PRESET (the default when
+// --data is not given), and the array options.
 struct SceneOptions {
-    std::string data, mesh;
+    std::vector<std::string> data;
+    std::string mesh;
     Given<std::string> phantom{"study"};
     ArrayOptions arrays;
     void declare(Args& a);
@@ -51,6 +53,9 @@ struct SceneOptions {
     // Loads it (common/scene_source.hpp's load_scene): a one-line summary, repair warnings on
     // stderr, a DataError when no line is left to draw.
     Scene load(bool quiet) const { return load_scene(source(), quiet); }
+    // The graph a command draws when given none: tracts_lineao for tracts, said on stderr
+    // (common/scene_source.hpp's default_graph).
+    std::string default_graph(bool quiet) const { return default_graph_noted(source(), quiet); }
 };
 
 // A time the user gave that reaches outside the data's time span would render frames with

@@ -2,6 +2,7 @@
 #include "args.hpp"
 #include "build_info.hpp"
 #include "commands.hpp"
+#include "common/scene_source.hpp"
 #include "frames/frames_in_flight.hpp"
 #include "graph/graph_model.hpp"
 #include "util/text.hpp"
@@ -61,6 +62,9 @@ int main(int argc, char** argv) {
         try {
             return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
         } catch (const InputError& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
+            return 2;
+        } catch (const pathlet::DataChoiceError& e) {  // files that do not fit together: the user's choice, as usage
             std::fprintf(stderr, "error: %s\n", e.what());
             return 2;
         } catch (const pathlet::GraphNotFound& e) {

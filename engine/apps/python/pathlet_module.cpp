@@ -383,6 +383,7 @@ PYBIND11_MODULE(_pathlet, m) {
             return py::dict(py::arg("length") = u.length, py::arg("time") = u.time, py::arg("velocity") = u.velocity);
         })
         .def_property_readonly("timeless", [](const Scene& s) { return s.lines.timeless; })
+        .def_property_readonly("bundles", [](const Scene& s) { return s.lines.bundle_names; })
         .def_property_readonly("wall_triangles", [](const Scene& s) { return s.mesh ? s.mesh->index.size() / 3 : 0; })
         .def("arrays", &scene_arrays);
 
@@ -392,7 +393,7 @@ PYBIND11_MODULE(_pathlet, m) {
         src.phantom = preset;
         return std::const_pointer_cast<Scene>(load_scene_source(src));
     });
-    m.def("load", [](const std::string& data, const std::string& mesh, const std::string& time_array,
+    m.def("load", [](const std::vector<std::string>& data, const std::string& mesh, const std::string& time_array,
                      const std::string& velocity_array, double time_step, const std::string& units, bool streamlines,
                      bool pseudo_time) {
         SceneSource src;
@@ -405,6 +406,11 @@ PYBIND11_MODULE(_pathlet, m) {
                     .pseudo_time = pseudo_time,
                     .units = units};
         return std::const_pointer_cast<Scene>(load_scene_source(src));
+    });
+    m.def("default_graph", [](const std::vector<std::string>& data) {
+        SceneSource src;
+        src.data = data;
+        return default_graph(src);
     });
     m.def("from_arrays", &scene_from_arrays);
     m.def("with_wall_file", [](const SceneRef& s, const std::string& path) {

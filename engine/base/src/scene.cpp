@@ -77,6 +77,13 @@ void Pathlines::check_consistent(const std::string& what) const {
         if (uint64_t(lines[i].first) + lines[i].count > n)
             throw DataError(what + ": line " + std::to_string(i) + " (first " + std::to_string(lines[i].first) + ", count " +
                             std::to_string(lines[i].count) + ") runs past the " + std::to_string(n) + " points");
+    if (!line_bundle.empty() && line_bundle.size() != lines.size())
+        throw DataError(what + ": " + std::to_string(line_bundle.size()) + " bundle ids for " + std::to_string(lines.size()) +
+                        " lines");
+    for (size_t i = 0; i < line_bundle.size(); ++i)
+        if (line_bundle[i] >= bundle_count())
+            throw DataError(what + ": line " + std::to_string(i) + " is in bundle " + std::to_string(line_bundle[i]) +
+                            " of " + std::to_string(bundle_count()));
 }
 
 Bounds Mesh::bounds() const { return bounds_of(position); }

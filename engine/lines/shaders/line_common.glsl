@@ -80,6 +80,8 @@ LinePoint line_point(vec3 pos_view, float time, float arc, float speed, int id) 
 #include "colormap.glsl"
 
 in LineFragment { LINE_FRAGMENT_MEMBERS } g_in;
+// Per line, its bundle (GpuScene::line_bundles_texture): what colormap=bundle colours by.
+uniform usamplerBuffer u_line_bundles;
 
 struct LineFrag {
     vec3 color;       // colour-mapped speed, before hooks, halos and lighting
@@ -151,6 +153,7 @@ LineFrag line_fragment() {
     float span = max(u_speed_range.y - u_speed_range.x, 1e-12);
     // The view matrix is a rotation and a translation: its transpose takes the tangent back to data axes.
     f.color = colormap_is_direction(u_colormap) ? colormap_direction(transpose(mat3(u_view)) * f.tangent)
+            : colormap_is_bundle(u_colormap)    ? colormap_bundle(texelFetch(u_line_bundles, g_in.line_id).r)
                                                 : colormap(u_colormap, (g_in.speed - u_speed_range.x) / span);
     f.point.time = g_in.time;
     f.point.age = clamp(g_in.age, 0.0, 1.0);

@@ -6,7 +6,7 @@
 namespace pathlet::lines {
 
 const std::vector<std::string>& colormaps() {
-    static const std::vector<std::string> names{"green_red", "viridis", "coolwarm", "grey", "direction"};
+    static const std::vector<std::string> names{"green_red", "viridis", "coolwarm", "grey", "direction", "bundle"};
     return names;
 }
 
@@ -52,7 +52,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                      "than this merge, farther lines get a gap")
         .param_enum("colormap", "green_red", colormaps(),
                     "speed colour map: green_red (study: green slow, yellow, red fast), viridis, coolwarm, grey; or "
-                    "direction: RGB = |dx|, |dy|, |dz| of the line's unit tangent (the tractography convention)")
+                    "direction: RGB = |dx|, |dy|, |dz| of the line's unit tangent (the tractography convention); "
+                    "bundle: a categorical colour per bundle (the data file a line came from)")
         .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile",
                      {.at_most = "speed_max", .automatic_at_or_below = 0.0})
         .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's 99th percentile")

@@ -54,8 +54,10 @@ void GpuScene::release() {
     if (chunk_buffer_) glDeleteBuffers(1, &chunk_buffer_);
     if (lod_buffer_) glDeleteBuffers(1, &lod_buffer_);
     if (position_buffer_) glDeleteBuffers(1, &position_buffer_);
+    if (bundles_tex_) glDeleteTextures(1, &bundles_tex_);
+    if (bundles_buffer_) glDeleteBuffers(1, &bundles_buffer_);
     mesh_.release();
-    line_vao_ = line_vbo_ = points_tex_ = chunk_buffer_ = lod_buffer_ = position_buffer_ = 0;
+    line_vao_ = line_vbo_ = points_tex_ = chunk_buffer_ = lod_buffer_ = position_buffer_ = bundles_buffer_ = bundles_tex_ = 0;
 }
 
 void GpuMesh::release() {
@@ -161,6 +163,11 @@ void GpuScene::upload(const Scene& scene) {
         lod_buffer_ = immutable_buffer(lod_.keep().data(), lod_.keep().size() * sizeof(float));
         static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
         position_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
+        std::vector<uint32_t> bundles(pl.lines.size());
+        for (size_t li = 0; li < bundles.size(); ++li) bundles[li] = pl.bundle_of(li);
+        bundles_buffer_ = immutable_buffer(bundles.data(), bundles.size() * sizeof(uint32_t));
+        glCreateTextures(GL_TEXTURE_BUFFER, 1, &bundles_tex_);
+        glTextureBuffer(bundles_tex_, GL_R32UI, bundles_buffer_);
     }
     glCreateBuffers(1, &line_vbo_);
     glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),

@@ -97,6 +97,8 @@ class Scene:
     wall_triangles = property(lambda self: self._h.wall_triangles)
     units = property(lambda self: self._h.units, doc="{length, time, velocity}; '' where unknown")
     timeless = property(lambda self: self._h.timeless, doc="lines without time (streamlines): drawn whole")
+    bundles = property(lambda self: list(self._h.bundles),
+                       doc="bundle names in bundle order: the data files' stems (colormap=bundle colours by them)")
 
     def arrays(self):
         """Copies of the data: points (n, 3), offsets (lines + 1), times (n), velocity (n, 3)."""
@@ -126,11 +128,23 @@ def phantom(preset="study"):
 def load(data, mesh=None, *, time_array="", velocity_array="", time_step=0.0, units="", streamlines=False,
          pseudo_time=False):
     """Pathlines from a file (.vtk, .vtp, .pathlet, .trk, .tck, text rows) and an optional wall
-    mesh, as ``pathlet render --data DATA --mesh MESH`` loads them. units: "LENGTH[,VELOCITY]"
+    mesh, as ``pathlet render --data DATA --mesh MESH`` loads them. data may be a list of files,
+    folders (their data files) or globs, joined as ``--data A B ...`` joins them: each file a
+    bundle named after it (Scene.bundles; colormap=bundle colours by it). units: "LENGTH[,VELOCITY]"
     where the file does not say them (as --units; the speed legend shows them, else "speed");
     streamlines / pseudo_time as the options of those names. Bad files raise DataError."""
-    return Scene(_core().load(os.fspath(data), os.fspath(mesh) if mesh else "", time_array, velocity_array,
+    return Scene(_core().load(_data_list(data), os.fspath(mesh) if mesh else "", time_array, velocity_array,
                               float(time_step), units, bool(streamlines), bool(pseudo_time)))
+
+
+def _data_list(data):
+    return [os.fspath(d) for d in data] if isinstance(data, (list, tuple)) else [os.fspath(data)]
+
+
+def default_graph(data):
+    """The shipped graph ``pathlet render --data DATA`` draws without a graph: "tracts_lineao"
+    for tractography (direction colours), else "variant1_lineao"."""
+    return _core().default_graph(_data_list(data))
 
 
 def from_arrays(points, offsets, times, velocity=None, *, wall=None, source="arrays", units=""):

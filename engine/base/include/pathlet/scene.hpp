@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -57,6 +58,11 @@ struct Pathlines {
     // pseudo-time along the arc length and `velocity` the tangent at a constant pseudo-speed;
     // line passes draw these lines whole and the overlay shows no time or speed legend.
     bool timeless = false;
+    // Bundles: the files a data set was joined from (tractography arrives as a file per bundle),
+    // each named after its file. `line_bundle` holds each line's index into `bundle_names`;
+    // both empty: one unnamed bundle (a single file, the phantom).
+    std::vector<std::string> bundle_names;
+    std::vector<uint32_t> line_bundle;
 
     size_t point_count() const { return position.size(); }
     size_t line_count() const { return lines.size(); }
@@ -68,6 +74,8 @@ struct Pathlines {
     float speed_min() const;          // |velocity|, 0 when empty
     float speed_max() const;
     const PointArray* array(const std::string& name) const;  // nullptr when there is none of that name
+    uint32_t bundle_of(size_t line) const { return line < line_bundle.size() ? line_bundle[line] : 0u; }
+    size_t bundle_count() const { return std::max<size_t>(1, bundle_names.size()); }
     // Throws DataError naming `what` if sizes disagree or a range is out of bounds.
     void check_consistent(const std::string& what) const;
 };

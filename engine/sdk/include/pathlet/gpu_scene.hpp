@@ -59,6 +59,9 @@ public:
     // llvmpipe) at 2.8M points: these reach it at 2.8M chunks and 11M points.
     static constexpr size_t kGpuChunkBytes = 48;
     GLuint chunk_buffer() const { return chunk_buffer_; }
+    // Per line, its bundle (Pathlines::bundle_of) as a buffer texture of R32UI (usamplerBuffer,
+    // texelFetch(t, line).r): the line kit's colormap=bundle reads it. 4 bytes a line.
+    GLuint line_bundles_texture() const { return bundles_tex_; }
     GLuint lod_buffer() const { return lod_buffer_; }
     GLuint position_buffer() const { return position_buffer_; }
     GLuint mesh_vao() const { return mesh_.vao(); }  // location 0 position, 1 normal; indexed
@@ -121,6 +124,7 @@ private:
     LineLod lod_;
     LineChunks chunks_;
     GLuint line_vao_ = 0, line_vbo_ = 0, points_tex_ = 0, chunk_buffer_ = 0, lod_buffer_ = 0, position_buffer_ = 0;
+    GLuint bundles_buffer_ = 0, bundles_tex_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
