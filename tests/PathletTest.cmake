@@ -32,6 +32,7 @@ function(pathlet_add_test name)
   # RUN_SERIAL: alone on the machine (a test that measures the machine's own load against a run)
   cmake_parse_arguments(T "RUN_SERIAL" "" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
+  set_property(GLOBAL APPEND PROPERTY PATHLET_TEST_TARGETS ${name})  # they share a precompiled header
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)  # header-only helpers (cli_run.hpp)
   list(GET T_SOURCES 0 first)
