@@ -64,10 +64,10 @@ set(PATHLET_PCH_HEADERS <nlohmann/json.hpp> <glm/glm.hpp> <algorithm> <cmath> <f
     <map> <memory> <optional> <set> <sstream> <string> <vector>)
 
 # pathlet_share_pch(HOLDER TARGETS target... [HEADERS <h>...] [LIBS lib...]): the TARGETS, all of
-# one kind (pass plugins, or executables), reuse one precompiled header, compiled by the object
-# library HOLDER under their flags (LIBS: what brings the macros HEADERS test, e.g. gtest's). GCC
-# refuses a header precompiled under other flags (-fPIC for -fPIE) or macros (the <target>_EXPORTS
-# CMake gives a MODULE, so the TARGETS do without it).
+# one kind with the same options (pass plugins, tests, fuzz targets), reuse one precompiled
+# header, compiled by the object library HOLDER under the first one's flags (LIBS: what brings the
+# macros HEADERS test, e.g. gtest's). GCC refuses a header precompiled under other flags (-fPIC
+# for -fPIE) or macros (the <target>_EXPORTS CMake gives a MODULE, so the TARGETS do without it).
 function(pathlet_share_pch holder)
   cmake_parse_arguments(P "" "" "TARGETS;HEADERS;LIBS" ${ARGN})
   if(NOT PATHLET_PCH OR NOT P_TARGETS)
@@ -79,17 +79,19 @@ function(pathlet_share_pch holder)
   target_precompile_headers(${holder} PRIVATE ${PATHLET_PCH_HEADERS} ${P_HEADERS})
   target_link_libraries(${holder} PRIVATE ${P_LIBS})
   list(GET P_TARGETS 0 first)
+  foreach(p CXX_VISIBILITY_PRESET VISIBILITY_INLINES_HIDDEN COMPILE_OPTIONS)
+    get_target_property(v ${first} ${p})
+    if(v)
+      set_target_properties(${holder} PROPERTIES ${p} "${v}")
+    endif()
+  endforeach()
   get_target_property(type ${first} TYPE)
   if(type STREQUAL EXECUTABLE)
     set_target_properties(${holder} PROPERTIES POSITION_INDEPENDENT_CODE OFF)
     target_compile_options(${holder} PRIVATE ${CMAKE_CXX_COMPILE_OPTIONS_PIE})
-  else()
-    foreach(p CXX_VISIBILITY_PRESET VISIBILITY_INLINES_HIDDEN)
-      get_target_property(v ${first} ${p})
-      if(v)
-        set_target_properties(${holder} PROPERTIES ${p} ${v})
-      endif()
-    endforeach()
+  endif()
+  if(CMAKE_CXX_COMPILER_ID MATCHES Clang)  # no timestamps in the file, so ccache can reuse it
+    target_compile_options(${holder} PRIVATE -Xclang -fno-pch-timestamp)
   endif()
   foreach(t ${P_TARGETS})
     set_target_properties(${t} PROPERTIES DEFINE_SYMBOL "")
