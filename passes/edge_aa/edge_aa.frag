@@ -1,10 +1,11 @@
 #version 450 core
 // Analytic edge anti-aliasing after the lighting (distance-to-edge AA, as GPAA/DEAA): the
-// G-buffer recorded, per pixel, the front line's nearer rim (outward direction and distance
-// in pixels). A pixel the rim cuts is the line's colour over its share of the pixel (a box
-// filter across the rim) and the colour beyond the rim elsewhere; a pixel just outside a line
-// in front of it gets that line's share the same way. Edges against the background, the wall
-// and lines behind all become smooth, and LineAO, computed per pixel before, is untouched.
+// G-buffer recorded, per pixel, the front line's nearer edge, a rim or a pathlet's end (outward
+// direction and distance in pixels). A pixel the edge cuts is the line's colour over its share
+// of the pixel (a box filter across the edge) and the colour beyond it elsewhere; a pixel just
+// outside a line in front of it gets that line's share the same way. Edges against the
+// background, the wall and lines behind all become smooth, and the AO, computed per pixel
+// before, is untouched.
 #include "fullscreen_pass.glsl"
 
 #ifdef FULLSCREEN_COMPUTE
@@ -63,11 +64,10 @@ void main() {
         if (cover < 1.0 && dot(dir, dir) > 0.25 && texelFetch(u_depth, beyond, 0).r > depth)
             result = mix(premultiplied(beyond), result, cover);
     }
-    // The fringe of a line in front whose rim lies within half a pixel of this pixel's centre,
-    // from the 4-neighbour that covers it most. (Summing opposite neighbours fills one-pixel
-    // gaps more but measured worse against a supersampled frame: 31.1 vs 30.0 RMS.)
-    float best = 0.0;
-    ivec2 from = p;
+    // The fringes of lines in front whose rims lie within half a pixel of this pixel's centre.
+    // Per axis both sides count (a pixel in a thin gap between two lines in front shows both);
+    // of the two axes the one that covers more (a corner's two fringes overlap, so they are not added).
+    float cover[4];
     for (int i = 0; i < 4; ++i) {
         ivec2 q = clamp(p + kNeighbours[i], ivec2(0), size - 1);
         vec4 en = texelFetch(u_edge, q, 0);
@@ -77,14 +77,21 @@ void main() {
         // A centre inside q's line was rasterised by it (or by what is in front of it, or it is
         // the same line's halo pushed back): only centres outside its rims take a fringe.
         float width = edge_width(en);
-        float cover = en.a > 0.0 && (inside < 0.0 || inside > width) ? coverage(inside, width) : 0.0;
-        if (cover > best) {
-            best = cover;
-            from = q;
-        }
+        float c = en.a > 0.0 && (inside < 0.0 || inside > width) ? coverage(inside, width) : 0.0;
+        // Only a line in front of this pixel's surface covers it.
+        cover[i] = c > 0.0 && texelFetch(u_depth, q, 0).r < depth ? c : 0.0;
     }
-    // Only a line in front of this pixel's surface covers it (one depth fetch, one colour fetch).
-    if (best > 0.0 && texelFetch(u_depth, from, 0).r < depth) result = mix(result, premultiplied(from), best);
+    int axis = cover[0] + cover[1] >= cover[2] + cover[3] ? 0 : 2;
+    float c0 = cover[axis], c1 = cover[axis + 1];
+    float fringe = c0 + c1;
+    if (fringe > 1.0) {
+        c0 /= fringe;
+        c1 /= fringe;
+        fringe = 1.0;
+    }
+    if (fringe > 0.0)
+        result = result * (1.0 - fringe) + premultiplied(clamp(p + kNeighbours[axis], ivec2(0), size - 1)) * c0 +
+                 premultiplied(clamp(p + kNeighbours[axis + 1], ivec2(0), size - 1)) * c1;
     if (u_alpha == 0) write_final(p, vec4(result.rgb, 1.0));
     else write_final(p, result.a > 0.0 ? vec4(result.rgb / result.a, result.a) : texelFetch(u_color, p, 0));
 }

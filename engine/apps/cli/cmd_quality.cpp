@@ -3,6 +3,7 @@
 // of the AO against a ray-traced AO of the same frame (Embree, tubes of the visible pathlets).
 // The measuring is quality/measure.cpp (shared with the Python module); this is the command.
 #include "commands.hpp"
+#include "graph_errors.hpp"
 #include "common_options.hpp"
 #include "executor.hpp"
 #include "image_io.hpp"
@@ -62,14 +63,16 @@ int run_experiment_table(Runtime& rt, const std::string& file, quality::Transpar
 }
 
 // --reference: fidelity of GRAPH against REFGRAPH (issue 42).
-int run_reference(const quality::QualityOptions& q, const std::string& reference, bool out_given, bool transparency,
-                  const std::string& experiment, bool allow_empty, double ppd, PluginOptions& plugins,
+int run_reference(const quality::QualityOptions& q, const std::string& reference, int ssaa, bool out_given,
+                  bool transparency, const std::string& experiment, bool allow_empty, double ppd, PluginOptions& plugins,
                   SceneOptions& data) {
     if (transparency || !experiment.empty()) throw UsageError("--reference measures fidelity; not with --transparency or --experiment");
     if (q.time && q.time->times().empty()) throw UsageError("--time gives no frame");
     if (!(ppd > 0.0) || !std::isfinite(ppd)) throw UsageError("--ppd must be a positive number of pixels per degree");
+    if (ssaa < 1 || ssaa > 8) throw UsageError("--ssaa-reference must be 1..8 (got " + std::to_string(ssaa) + ")");
     quality::ReferenceOptions o;
     o.ppd = ppd;
+    o.reference_ssaa = ssaa;
     o.graph_path = q.graph_path;
     o.reference_path = reference;
     o.size = q.size;
@@ -80,17 +83,31 @@ int run_reference(const quality::QualityOptions& q, const std::string& reference
     o.sets = rt.user_sets(q.sets);
     const Scene scene = data.load(true);
     if (q.time) check_time_in_data(*q.time, shown(*q.time), scene, allow_empty);
-    const quality::ReferenceResult r = quality::measure_against_reference(rt, scene, o);
+    quality::ReferenceResult r;
+    try {
+        r = quality::measure_against_reference(rt, scene, o);
+    } catch (const GraphError& e) {
+        return report_graph_error(e, rt);
+    }
     const quality::ImageMetrics& m = r.metrics;
     std::printf("%s vs %s: %zu frames %dx%d, t=%.2f..%.2f, %zu covered pixels (%.0f a frame)\n", r.graph.c_str(),
                 r.reference.c_str(), r.frames, o.size.x, o.size.y, r.first_time, r.last_time, m.pixels,
                 double(m.pixels) / double(std::max<size_t>(r.frames, 1)));
+    if (!m.ssim_measured()) {  // nothing to measure: no score, and not a success
+        std::printf("ssim n/a (no %dx%d window lies inside a %dx%d picture with a covered centre)\n",
+                    quality::kSsimWindow, quality::kSsimWindow, o.size.x, o.size.y);
+        std::fprintf(stderr, "error: nothing to measure: %zu covered pixels, no SSIM window\n", m.pixels);
+        return 2;
+    }
     std::printf("ssim %.5f\n", m.ssim);
     std::printf("psnr %.2f\n", m.psnr);
     std::printf("rmse %.5f\n", m.rmse);
     std::printf("share over 8/255 %.4f %%\n", 100.0 * m.share_over);
     std::printf("flip %.5f (mean LDR-FLIP over the covered pixels; all pixels %.5f; %.1f pixels per degree)\n", m.flip,
                 m.flip_all, o.ppd);
+    std::printf("rms %.2f levels of 255, speckles %.4f %% (the reference's %.4f %%; ../shared/tools/aa_metric.py's figures)\n",
+                r.aa.rms, 100.0 * r.aa.speckle, 100.0 * r.reference_aa.speckle);
+    if (const std::string note = quality::incomplete_frames_note(r); !note.empty()) std::printf("note: %s\n", note.c_str());
     if (r.flicker)
         std::printf("flicker vs reference %.5f (own change %.5f, the reference's %.5f)\n", r.flicker->excess,
                     r.flicker->test_change, r.flicker->reference_change);
@@ -125,12 +142,16 @@ int run(const std::vector<std::string>& argv) {
     quality::TransparencyOptions t;
     std::string experiment, reference;
     double ppd = quality::kFlipPpd;
+    int ssaa_reference = 1;
     a.option("rays", q.rays, "N", "ray-traced AO: rays per pixel")
         .option("flicker-rays", q.flicker_rays, "N",
                 "ray-traced AO of every frame, for the flicker against the reference's own change: rays per pixel "
                 "(0: not measured)")
         .option("max-distance", q.max_distance, "WIDTHS", "ray-traced AO: ray length in line widths")
         .flag("include-own-line", q.own_line, "ray-traced AO: a pixel's own line occludes it too (issue 13's reference)")
+        .flag("gbuffer-point", q.gbuffer_point,
+              "ray-traced AO: rays start at the G-buffer's depth and normal (halos pushed back), not where the "
+              "pixel's ray meets its line's round tube")
         .option("depth-tolerance", q.depth_tolerance, "D",
                 "flicker: largest change of linear depth that counts as unchanged")
         .option("out", q.work_dir, "DIR", "folder for the per-pixel error image")
@@ -149,11 +170,17 @@ int run(const std::vector<std::string>& argv) {
                 "both), compared over the pixels either covers: windowed SSIM (Wang et al. 2004, 11x11 Gaussian "
                 "on luminance), PSNR, RMSE, the share of pixels more than 8/255 apart, LDR-FLIP (Andersson et al. "
                 "2020) and the flicker beyond the reference's own; --out DIR gets the difference and FLIP images")
+        .option("ssaa-reference", ssaa_reference, "N",
+                "fidelity of the edges: the reference (REFGRAPH, or GRAPH itself without --reference) rendered with "
+                "N x N samples a pixel (render --ssaa N, its variable aa off) and box-filtered; adds "
+                "../shared/tools/aa_metric.py's rms and speckles")
         .option("ppd", ppd, "PPD",
                 "--reference: FLIP's observer in pixels per degree (default 67: 0.7 m from a 0.7 m wide monitor "
                 "of 3840 pixels)")
         .example("pathlet quality variant2_exact --reference variant2_depth_peel --set window=0 --size 1280x720",
                  "the exact reference against depth peeling")
+        .example("pathlet quality variant1_lineao --ssaa-reference 4 --size 1280x720 --time 9:9.4:0.04",
+                 "edges against a 4x4 supersampled render of the same graph, still and in motion")
         .example("pathlet quality variant4_opacity --transparency --size 1280x720", "what the optimized opacity shows")
         .example("pathlet quality --transparency --experiment graphs/experiments/transparency.json",
                  "variant 2, a uniform opacity, a speed transfer function and variant 4 side by side");
@@ -167,13 +194,13 @@ int run(const std::vector<std::string>& argv) {
     if (!a.parse(argv)) return 0;
     // An option the chosen measure ignores is an error, not silence (issue 41).
     const std::vector<std::string> ao_only = {"rays", "flicker-rays", "max-distance", "include-own-line",
-                                              "depth-tolerance", "images"};
+                                              "gbuffer-point", "depth-tolerance", "images"};
     const std::vector<std::string> transparency_only = {"focus-share", "visible", "repeat"};
-    if (!reference.empty()) {
+    if (!reference.empty() || ssaa_reference != 1) {
         a.unused_here(ao_only, "with --reference (it compares two graphs' pictures; no AO is ray-traced)");
         a.unused_here(transparency_only, "with --reference (it compares pictures, not the lists' fragments)");
     } else if (transparency) {
-        a.unused_here({"ppd"}, "without --reference (FLIP compares two graphs' pictures)");
+        a.unused_here({"ppd", "ssaa-reference"}, "without --reference (FLIP compares two graphs' pictures)");
         a.unused_here(ao_only, "with --transparency (no AO is ray-traced)");
         a.unused_here({"out"}, "with --transparency (it writes no images)");
     } else {
@@ -186,8 +213,9 @@ int run(const std::vector<std::string>& argv) {
     t.size = q.size;
     t.time = q.time;
     const bool out_given = std::find(argv.begin(), argv.end(), "--out") != argv.end();
-    if (!reference.empty()) return run_reference(q, resolve_graph_path(reference), out_given, transparency,
-                                                 experiment, allow_empty, ppd, plugins, data);
+    if (!reference.empty() || ssaa_reference != 1)
+        return run_reference(q, reference.empty() ? q.graph_path : resolve_graph_path(reference), ssaa_reference,
+                             out_given, transparency, experiment, allow_empty, ppd, plugins, data);
     try {
         if (transparency) quality::check_transparency_options(t);
         else quality::check_quality_options(q);

@@ -126,13 +126,14 @@ ImageMetrics pool(const std::vector<ImageMetrics>& frames) {
         p.sum_flip_all += f.sum_flip_all;
         p.all_pixels += f.all_pixels;
     }
-    p.ssim = p.ssim_windows ? p.sum_ssim / double(p.ssim_windows) : 1.0;
-    const double mse = p.pixels ? p.sum_sq / (3.0 * double(p.pixels)) : 0.0;
+    const double none = std::numeric_limits<double>::quiet_NaN();  // nothing to measure: n/a
+    p.ssim = p.ssim_windows ? p.sum_ssim / double(p.ssim_windows) : none;
+    const double mse = p.pixels ? p.sum_sq / (3.0 * double(p.pixels)) : none;
     p.rmse = std::sqrt(mse);
-    p.psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
-    p.share_over = p.pixels ? double(p.over) / double(p.pixels) : 0.0;
-    p.flip = p.pixels ? p.sum_flip / double(p.pixels) : 0.0;
-    p.flip_all = p.all_pixels ? p.sum_flip_all / double(p.all_pixels) : 0.0;
+    p.psnr = !p.pixels ? none : mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+    p.share_over = p.pixels ? double(p.over) / double(p.pixels) : none;
+    p.flip = p.pixels ? p.sum_flip / double(p.pixels) : none;
+    p.flip_all = p.all_pixels ? p.sum_flip_all / double(p.all_pixels) : none;
     return p;
 }
 
@@ -140,24 +141,61 @@ FlickerVsReference flicker_vs_reference(const std::vector<Image>& test, const st
                                         const std::vector<std::vector<uint8_t>>& masks) {
     if (test.size() != ref.size() || test.size() != masks.size() || test.size() < 2)
         throw std::invalid_argument("flicker needs at least two frames of both pictures and their masks");
-    FlickerVsReference f;
-    double excess = 0, tc = 0, rc = 0;
-    for (size_t k = 1; k < test.size(); ++k) {
-        for (const Image* im : {&test[k], &test[k - 1], &ref[k - 1]}) require_same(*im, ref[k], masks[k].size());
-        for (size_t i = 0; i < masks[k].size(); ++i) {
-            if (!masks[k][i] && !masks[k - 1][i]) continue;
-            ++f.samples;
-            for (int c = 0; c < 3; ++c) {
-                const auto at = [&](const Image& im) { return double(im.pixels[i * size_t(im.channels) + size_t(c)]); };
-                const double dt = at(test[k]) - at(test[k - 1]), dr = at(ref[k]) - at(ref[k - 1]);
-                excess += std::fabs(dt - dr);
-                tc += std::fabs(dt);
-                rc += std::fabs(dr);
-            }
+    FlickerAccumulator f;
+    for (size_t k = 1; k < test.size(); ++k) f.add(test[k - 1], test[k], ref[k - 1], ref[k], masks[k - 1], masks[k]);
+    return f.result();
+}
+
+void FlickerAccumulator::add(const Image& test_prev, const Image& test, const Image& ref_prev, const Image& ref,
+                             const std::vector<uint8_t>& mask_prev, const std::vector<uint8_t>& mask) {
+    for (const Image* im : {&test, &test_prev, &ref_prev}) require_same(*im, ref, mask.size());
+    if (mask_prev.size() != mask.size()) throw std::invalid_argument("flicker: the masks differ in size");
+    for (size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i] && !mask_prev[i]) continue;
+        ++samples_;
+        for (int c = 0; c < 3; ++c) {
+            const auto at = [&](const Image& im) { return double(im.pixels[i * size_t(im.channels) + size_t(c)]); };
+            const double dt = at(test) - at(test_prev), dr = at(ref) - at(ref_prev);
+            excess_ += std::fabs(dt - dr);
+            test_change_ += std::fabs(dt);
+            reference_change_ += std::fabs(dr);
         }
     }
-    const double n = 3.0 * double(std::max<size_t>(f.samples, 1));
-    f.excess = excess / n, f.test_change = tc / n, f.reference_change = rc / n;
+}
+
+FlickerVsReference FlickerAccumulator::result() const {
+    FlickerVsReference f;
+    f.samples = samples_;
+    const double n = 3.0 * double(std::max<size_t>(samples_, 1));
+    f.excess = excess_ / n, f.test_change = test_change_ / n, f.reference_change = reference_change_ / n;
+    return f;
+}
+
+AaFigures aa_figures(const Image& a, const Image& ref) {
+    require_same(a, ref, size_t(a.width) * size_t(a.height));
+    const auto level = [](const Image& im, int x, int y, int c) { return 255.0 * double(im.at(x, y, c)); };
+    const auto covered = [&](const Image& im, int x, int y) {
+        for (int c = 0; c < 3; ++c)
+            if (std::fabs(level(im, x, y, c) - level(a, 0, 0, c)) > 8.0) return true;
+        return false;
+    };
+    const auto lum = [&](int x, int y) { return (level(a, x, y, 0) + level(a, x, y, 1) + level(a, x, y, 2)) / 3.0; };
+    AaFigures f;
+    double sum = 0;
+    size_t speckles = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (!covered(a, x, y) && !covered(ref, x, y)) continue;
+            ++f.covered;
+            for (int c = 0; c < 3; ++c) sum += std::pow(level(a, x, y, c) - level(ref, x, y, c), 2.0) / 3.0;
+            if (x > 0 && y > 0 && x + 1 < a.width && y + 1 < a.height) {
+                const double l = lum(x, y);
+                speckles += lum(x - 1, y) - l > 60 && lum(x + 1, y) - l > 60 && lum(x, y - 1) - l > 60 &&
+                            lum(x, y + 1) - l > 60;
+            }
+        }
+    f.rms = f.covered ? std::sqrt(sum / double(f.covered)) : 0.0;
+    f.speckle = f.covered ? double(speckles) / double(f.covered) : 0.0;
     return f;
 }
 

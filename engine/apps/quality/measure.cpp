@@ -120,30 +120,46 @@ struct Captured {
     double time = 0;
 };
 
-// Tubes of the visible pathlets at time t: the points of each line within [t - window, t].
+// Tubes of the visible pathlets at time t: each line clipped to [t - window, t] in time as the
+// line kit clips its quads (a segment the window's end cuts is cut there, interpolated), so the
+// tubes are the lines the picture draws, not up to a data segment shorter at each end.
 std::vector<Tube> visible_tubes(const Pathlines& lines, double t, double window, float radius) {
     std::vector<Tube> tubes;
+    const double t0 = t - window;
     for (const LineRange& r : lines.lines) {
         Tube tube;
         tube.radius = radius;
         tube.id = int(&r - lines.lines.data());
-        for (uint32_t i = r.first; i < r.first + r.count; ++i) {
-            const double ti = lines.time[i];
-            if (window <= 0 || (ti >= t - window && ti <= t)) tube.points.push_back(lines.position[i]);
+        if (window <= 0) {
+            for (uint32_t i = r.first; i < r.first + r.count; ++i) tube.points.push_back(lines.position[i]);
+        } else {
+            for (uint32_t i = r.first; i + 1 < r.first + r.count; ++i) {
+                const double ta = lines.time[i], tb = lines.time[i + 1];
+                if (tb < t0 || ta > t) continue;
+                const double dt = tb - ta;
+                const float fa = dt > 1e-9 ? float(std::clamp((t0 - ta) / dt, 0.0, 1.0)) : 0.0f;
+                const float fb = dt > 1e-9 ? float(std::clamp((t - ta) / dt, 0.0, 1.0)) : 1.0f;
+                const glm::vec3 a = glm::mix(lines.position[i], lines.position[i + 1], fa);
+                if (tube.points.empty() || tube.points.back() != a) tube.points.push_back(a);
+                tube.points.push_back(glm::mix(lines.position[i], lines.position[i + 1], fb));
+            }
         }
         if (tube.points.size() >= 2) tubes.push_back(std::move(tube));
     }
     return tubes;
 }
 
-// Ray-traced AO per covered pixel: the pixel's 3D point from its linear depth through the
-// camera (exact inverse of engine/lines/shaders/line_common.glsl), its normal to world space.
+// Ray-traced AO per covered pixel. Its point and normal: where the pixel's ray meets the pixel's
+// own line's round tube (QualityOptions::gbuffer_point false), or from the G-buffer: the linear
+// depth through the camera (exact inverse of engine/lines/shaders/line_common.glsl) and the
+// normal; a ray that misses its tube (a rim pixel the level of detail moved) takes the G-buffer's.
 // own_line: whether the pixel's own line may occlude it (QualityOptions::own_line).
 std::vector<float> reference_ao(const Captured& c, const Camera& cam, const RayTracedAo& rt, int rays,
-                                float max_distance, float offset, bool own_line) {
+                                float max_distance, float offset, const QualityOptions& q) {
     const FrameSample& f = c.sample;
     std::vector<float> out(f.size(), 1.0f);
     const glm::mat4 inv_view = glm::inverse(cam.view);
+    const glm::vec3 eye_at = glm::vec3(inv_view[3]);
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
             const size_t i = size_t(y) * f.width + x;
@@ -151,9 +167,16 @@ std::vector<float> reference_ao(const Captured& c, const Camera& cam, const RayT
             const float nx = (x + 0.5f) / f.width * 2 - 1, ny = 1 - (y + 0.5f) / f.height * 2;  // top row first
             const float eye = cam.near_plane + f.depth[i] * (cam.far_plane - cam.near_plane);
             const glm::vec4 view(nx * eye / cam.proj[0][0], ny * eye / cam.proj[1][1], -eye, 1.0f);
-            const glm::vec3 p = glm::vec3(inv_view * view);
-            const glm::vec3 n = glm::normalize(glm::mat3(inv_view) * c.normal[i]);
-            out[i] = rt.ambient(p + n * offset, n, rays, max_distance, uint32_t(i + 1), own_line ? -1 : f.line_id[i]);
+            glm::vec3 p = glm::vec3(inv_view * view);
+            glm::vec3 n = glm::normalize(glm::mat3(inv_view) * c.normal[i]);
+            if (!q.gbuffer_point) {
+                glm::vec3 tube_p, tube_n;
+                if (rt.surface_of(f.line_id[i], eye_at, glm::normalize(p - eye_at), tube_p, tube_n)) {
+                    p = tube_p;
+                    n = tube_n;
+                }
+            }
+            out[i] = rt.ambient(p + n * offset, n, rays, max_distance, uint32_t(i + 1), q.own_line ? -1 : f.line_id[i]);
         }
     return out;
 }
@@ -286,14 +309,14 @@ QualityResult measure_quality(Runtime& rt, const Scene& scene, const QualityOpti
     RayTracedAo tracer(visible_tubes(scene.lines, last.time, window, 0.5f * width));
     res.reach = q.max_distance * width;
     res.segments = tracer.segments();
-    res.reference = reference_ao(last, cam, tracer, q.rays, res.reach, 0.05f * width, q.own_line);
+    res.reference = reference_ao(last, cam, tracer, q.rays, res.reach, 0.05f * width, q);
     // The reference of every frame (fewer rays: the same ones per pixel in every frame, so
     // what changes is the scene): the change it has itself is not flicker.
     if (q.flicker_rays > 0) {
         std::vector<std::vector<float>> refs;
         for (const Captured& c : frames) {
             RayTracedAo t(visible_tubes(scene.lines, c.time, window, 0.5f * width));
-            refs.push_back(reference_ao(c, cam, t, q.flicker_rays, res.reach, 0.05f * width, q.own_line));
+            refs.push_back(reference_ao(c, cam, t, q.flicker_rays, res.reach, 0.05f * width, q));
         }
         res.reference_flicker = measure_flicker_against(samples, refs, q.depth_tolerance);
     }

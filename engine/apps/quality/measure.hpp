@@ -35,6 +35,11 @@ struct QualityOptions {
     // (the kit moves the tube's depth along the view axis, not the normal: 17 % of the
     // phantom's pixels at t = 9 s), and every ray from there met the tube's inside.
     bool own_line = false;
+    // Where the reference's rays start: false = where the pixel's ray meets its own line's round
+    // tube, with that tube's normal (the surface the pixel shows); true = the G-buffer's linear
+    // depth and normal, as before (the kit's tube depth moves along the view axis and halos are
+    // pushed back by up to halo_depth, so a halo pixel's point can lie inside the tubes behind it).
+    bool gbuffer_point = false;
     std::string work_dir;           // where the patched copy of the graph lives while it runs
 };
 

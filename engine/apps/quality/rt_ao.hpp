@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace pathlet::quality {
@@ -34,12 +36,20 @@ class RayTracedAo {
   // Rays ignore the tubes whose id is `exclude_id` (the point's own line; -1: none).
   float ambient(const glm::vec3& p, const glm::vec3& n, int rays, float max_distance,
                 uint32_t seed = 1, int exclude_id = -1) const;
+  // Where the ray from `origin` along unit `dir` first meets a tube of line `id` (the others are
+  // transparent to it), and the tube's outward unit normal there. A ray that passes the tube by
+  // (a rim pixel a little outside it: the drawn line is simplified within the level of detail)
+  // gets the tube's rim nearest to the ray. False when the line has no tube here.
+  bool surface_of(int id, const glm::vec3& origin, const glm::vec3& dir, glm::vec3& point, glm::vec3& normal) const;
   size_t segments() const { return segments_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<int> segment_id_;  // tube id of each segment (Embree primitive)
+  std::vector<glm::vec3> segment_a_, segment_b_;  // its end points (the axis, for surface_of's normal)
+  std::vector<float> segment_radius_;
+  std::unordered_map<int, std::pair<size_t, size_t>> segments_of_;  // tube id -> first segment, count
   size_t segments_ = 0;
 };
 

@@ -21,6 +21,8 @@ RayTracedAo::~RayTracedAo() = default;
 
 float RayTracedAo::ambient(const glm::vec3&, const glm::vec3&, int, float, uint32_t, int) const { return 1.0f; }
 
+bool RayTracedAo::surface_of(int, const glm::vec3&, const glm::vec3&, glm::vec3&, glm::vec3&) const { return false; }
+
 glm::vec3 cosine_direction(const glm::vec3& n, float, float) { return n; }
 
 }  // namespace pathlet::quality

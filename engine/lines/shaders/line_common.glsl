@@ -96,6 +96,8 @@ struct LineFrag {
     float s_per_px;   // change of s over one pixel across the line
     float rim_px;     // distance from the pixel centre to the nearer rim, in pixels (>= 0)
     vec2 rim_dir;     // unit screen direction out of the quad through the nearer rim
+    float cap_px;     // distance from the pixel centre to the nearer end of the pathlet, in pixels
+    vec2 cap_dir;     // unit screen direction out through that end (head or tail)
     LinePoint point;  // what the hooks see (time, age, arc lengths, speed, line id)
 };
 
@@ -114,6 +116,13 @@ LineFrag line_fragment() {
     f.s_per_px = 1.0 / inv_ds;  // change of s per pixel
     f.rim_px = (1.0 - f.abs_s) * inv_ds;
     f.rim_dir = (s < 0.0 ? -ds : ds) * inv_ds;
+    // The ends are edges too: the arc length runs linearly along the quad, so its screen gradient
+    // gives the distance to the head (arc_head = 0 there) or the tail in pixels, as s does across.
+    vec2 da = vec2(dFdx(g_in.arc), dFdy(g_in.arc));
+    float inv_da = inversesqrt(max(dot(da, da), 1e-24));  // pixels per unit of arc length
+    bool head = g_in.arc_head < g_in.arc_tail;
+    f.cap_px = max(head ? g_in.arc_head : g_in.arc_tail, 0.0) * inv_da;
+    f.cap_dir = (head ? da : -da) * inv_da;
     float c = sqrt(max(1.0 - s * s, 0.0));
     // side is unit at both quad ends; between them its interpolation is a little shorter.
     float side2 = dot(g_in.side, g_in.side);
@@ -176,9 +185,20 @@ vec3 line_halo_tint(vec3 color, LineFrag f) {
 // The rim for edge_aa (the line passes' optional `edge` output): rg = 0.5 + 0.5 * outward
 // screen direction, b = distance to the nearer rim in pixels / 2 (clamped to 1), a = 0.2 +
 // 0.8 * width / 4 px (clamped; 0 = no line): the far rim of a thin line bounds its coverage.
+// Near a pathlet's end the end is the edge (its far side is the pathlet's length: a = 1).
 vec4 line_edge(LineFrag f) {
+    if (f.cap_px < f.rim_px) return vec4(0.5 + 0.5 * f.cap_dir, min(f.cap_px * 0.5, 1.0), 1.0);
     float width_px = 2.0 / f.s_per_px;
     return vec4(0.5 + 0.5 * f.rim_dir, min(f.rim_px * 0.5, 1.0), 0.2 + 0.8 * min(width_px * 0.25, 1.0));
+}
+
+// The share of the pixel the quad covers, box-filtered across the rims (both: a line thinner than
+// a pixel covers less) and the nearer end: what the transparency techniques multiply into the
+// opacity, as edge_aa blends an opaque G-buffer.
+float line_coverage(LineFrag f) {
+    float width_px = 2.0 / f.s_per_px;
+    float across = clamp(min(f.rim_px + 0.5, width_px) - max(f.rim_px - 0.5, 0.0), 0.0, 1.0);
+    return across * clamp(0.5 + f.cap_px, 0.0, 1.0);
 }
 
 // Screen-door transparency for opaque targets: a fragment of opacity a survives where a 4x4

@@ -102,21 +102,45 @@ vec3 vao_view_point(vec2 ndc, float eye) {
     return vec3((ndc - u_vao_proj.zw) / u_vao_proj.xy, -eye);
 }
 
-// The AO of a pixel's point as the ray-traced reference of `pathlet quality` places it: the
-// point at linear depth depth01 along the pixel's ray, its view-space normal n; the line's
-// axis from its view-space tangent t and w, the eye depth from the point back to the quad
-// through the axis (the kit's tube bulges towards the viewer and halos are pushed back).
-float line_volume_ao_gbuffer(vec2 frag_coord, float depth01, vec3 n, vec3 t, float w) {
+// The AO of the surface a pixel shows, where the ray-traced reference of `pathlet quality`
+// places it: where the pixel's ray meets the line's round tube, with that tube's normal. From
+// what the G-buffer keeps: the point at linear depth depth01 along the pixel's ray, the kit's
+// view-space normal n, the view-space tangent t, and w, the eye depth from that point back to
+// the quad through the axis. The kit's depth is not the tube's: it bulges towards the viewer
+// by r sqrt(1 - s^2) along the view axis, where an inclined tube's surface lies nearer by
+// 1 / sin(angle between the line and the ray), and halos are pushed back further; so the point
+// is rebuilt from the quad and the axis.
+struct VaoSurface {
+    vec3 point;   // on the tube, view space
+    vec3 normal;  // the tube's, unit
+    vec3 axis;    // a point on the tube's axis
+    vec3 tangent; // the axis' direction, unit
+};
+VaoSurface vao_surface(vec2 frag_coord, float depth01, vec3 n, vec3 t, float w) {
     vec2 ndc = frag_coord * u_vao_inv_size * 2.0 - 1.0;
     float eye = mix(u_vao_depth_range.x, u_vao_depth_range.y, depth01);
-    vec3 p = vao_view_point(ndc, eye);
+    vec3 quad = vao_view_point(ndc, eye + w);  // the pixel's point on the quad through the axis
     n = vao_normalize(n, vec3(0.0, 0.0, 1.0));
-    t = vao_normalize(t, vec3(0.0, 1.0, 0.0));
-    vec3 to_viewer = u_vao_perspective != 0 ? vao_normalize(-p, vec3(0.0, 0.0, 1.0)) : vec3(0.0, 0.0, 1.0);
+    VaoSurface v;
+    v.tangent = vao_normalize(t, vec3(0.0, 1.0, 0.0));
+    vec3 to_viewer = u_vao_perspective != 0 ? vao_normalize(-quad, vec3(0.0, 0.0, 1.0)) : vec3(0.0, 0.0, 1.0);
     // The quad's side as the kit's geometry stage builds it; n = s side + c v gives s.
-    vec3 side = vao_normalize(cross(t, to_viewer), vec3(1.0, 0.0, 0.0));
-    vec3 q = vao_view_point(ndc, eye + w) - dot(n, side) * u_vao_radius * side;
-    return line_volume_ao_view(p, n, q, t);
+    vec3 across = cross(v.tangent, to_viewer);
+    vec3 side = vao_normalize(across, vec3(1.0, 0.0, 0.0));
+    float s = clamp(dot(n, side), -1.0, 1.0);
+    v.axis = quad - s * u_vao_radius * side;
+    // Back along the ray to the tube: the ray crosses the tube's section at sin(angle) of its
+    // speed (clamped: a line seen end-on keeps a finite depth).
+    float sin_angle = max(length(across), 0.25);
+    v.point = quad + (u_vao_radius * sqrt(1.0 - s * s) / sin_angle) * to_viewer;
+    vec3 radial = v.point - v.axis;
+    v.normal = vao_normalize(radial - dot(radial, v.tangent) * v.tangent, n);
+    return v;
+}
+
+float line_volume_ao_gbuffer(vec2 frag_coord, float depth01, vec3 n, vec3 t, float w) {
+    VaoSurface v = vao_surface(frag_coord, depth01, n, t, w);
+    return line_volume_ao_view(v.point, v.normal, v.axis, v.tangent);
 }
 
 // Octahedral unit vectors in 32 bits (snorm 16 x 2): a record per OIT fragment.
