@@ -18,7 +18,7 @@ echo "main.sh builds: $(echo $built)"
 # pathlet_add_pass, not NO_INSTALL) with its shaders. Anything else (a test, benchmark, fuzzer,
 # fixture plugin, the Python module, a target named tomorrow) is a failure.
 allowed="pathlet pathlet_cli pathlet_share pathlet_runtime pathlet_base pathlet_data pathlet_sdk_fingerprint pathlet_app_support
-  pathlet_bench pathlet_quality"
+  pathlet_bench pathlet_quality pathlet_pass_pch"  # pathlet_pass_pch: the plugins' precompiled header
 passes=""
 for f in "$SRC"/passes/*/CMakeLists.txt; do
   grep -q 'NO_INSTALL' "$f" && continue

@@ -17,7 +17,7 @@ namespace {
 // box_downsample's loops: image rows top-down (GL rows from the block's top), columns left to
 // right, colour weighted by alpha, alpha, the plain colour; `precise` keeps each multiply and
 // add a rounded IEEE operation of its own, in this order.
-constexpr const char* kFragment = R"(#version 450 core
+constexpr const char* kBoxFilterFragment = R"(#version 450 core
 layout(binding = 0) uniform sampler2D u_src;
 uniform int u_factor;
 layout(location = 0) out vec4 o_sums;
@@ -46,7 +46,7 @@ GpuBoxFilter::~GpuBoxFilter() {
 
 void GpuBoxFilter::ensure_program() {
     if (program_) return;
-    program_ = link_output_program(kFragment, "GPU box filter");
+    program_ = link_output_program(kBoxFilterFragment, "GPU box filter");
     factor_loc_ = glGetUniformLocation(program_, "u_factor");
     glCreateVertexArrays(1, &vao_);
 }

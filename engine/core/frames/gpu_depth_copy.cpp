@@ -16,7 +16,7 @@ namespace {
 // depth (depth16, depth24) taken back to its integer and divided as a CPU pixel path divides it,
 // in double precision rounded once to float (mode 1: for drivers whose texelFetch is a
 // single-precision product). The integer comes back exactly from any float within half a step.
-constexpr const char* kFragment = R"(#version 450 core
+constexpr const char* kDepthCopyFragment = R"(#version 450 core
 layout(binding = 0) uniform sampler2D u_depth;
 uniform double u_steps;  // 2^bits - 1; 0: texelFetch's value as it is
 layout(location = 0) out float o_depth;
@@ -47,7 +47,7 @@ GpuDepthCopy::~GpuDepthCopy() {
 
 GLuint GpuDepthCopy::to_float(GLuint src, GLenum depth_format, int w, int h, size_t slot) {
     if (!program_) {
-        program_ = link_output_program(kFragment, "GPU depth copy");
+        program_ = link_output_program(kDepthCopyFragment, "GPU depth copy");
         steps_loc_ = glGetUniformLocation(program_, "u_steps");
         glCreateVertexArrays(1, &vao_);
         // A pass may have set its depth texture to compare (a shadow lookup): plain depth here.

@@ -9,11 +9,6 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kStep = 0.5f;  // mm between samples
 
-float smoothstep(float a, float b, float x) {
-    const float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-
 // Position along the whole centreline for a parameter u in [0, 3): one unit per segment.
 glm::vec3 curve(const ArchShape& a, float u) {
     if (u < 1.0f) return {0.0f, 0.0f, a.ascending_length * u};

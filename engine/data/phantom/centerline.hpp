@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace pathlet::phantom {
@@ -30,5 +31,11 @@ std::vector<CenterlineSample> make_centerline(const ArchShape& shape);
 
 // Arc length where the arch ends and the descending aorta starts.
 float arch_end_s(const ArchShape& shape);
+
+// 0 below a, 1 above b, a smooth cubic between (GLSL's smoothstep): the phantom's blends.
+inline float smoothstep(float a, float b, float x) {
+    const float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
 
 }  // namespace pathlet::phantom

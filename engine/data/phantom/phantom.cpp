@@ -11,11 +11,6 @@
 namespace pathlet::phantom {
 namespace {
 
-float smoothstep(float a, float b, float x) {
-    const float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-
 struct Aneurysm {
     glm::vec3 centre{0.0f}, axis{0.0f};  // vortex axis
     float radius = 0.0f;

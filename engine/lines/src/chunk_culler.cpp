@@ -29,8 +29,6 @@ constexpr size_t kCountsBytes = sizeof(Header) - kCountsOffset;
 
 std::string def(const char* name, size_t v) { return std::string(name) + " " + std::to_string(v); }
 
-void set_uint(const ShaderProgram& p, const char* name, uint32_t v) { glProgramUniform1ui(p.id(), p.loc(name), v); }
-
 void dispatch(uint32_t invocations, uint32_t group) { glDispatchCompute(std::max<GLuint>(1, (invocations + group - 1) / group), 1, 1); }
 
 // CullState's stride as GL lays it out against kStateBytes: a drift (an edited line_cull.glsl)

@@ -21,8 +21,6 @@ std::vector<uint32_t> levels(size_t chunks, uint32_t per_thread) {
     return n;
 }
 
-void set_uint(const ShaderProgram& p, const char* name, uint32_t v) { glProgramUniform1ui(p.id(), p.loc(name), v); }
-
 }  // namespace
 
 size_t CullScan::scratch_words(size_t chunks, uint32_t per_thread) {

@@ -18,6 +18,9 @@
 
 namespace pathlet::lines {
 
+// An unsigned uniform of one of the culling's programs (the scan's and ChunkCuller's).
+inline void set_uint(const ShaderProgram& p, const char* name, uint32_t v) { glProgramUniform1ui(p.id(), p.loc(name), v); }
+
 // The header buffer: the two phases' DrawElementsIndirectCommands, the frame's counts, then
 // the scan's scratch (scratch_words(chunks) uints).
 struct CullHeader {
