@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fragment against compute versions of the fullscreen passes (issue 34, item 5), interleaved:
+# Fragment against compute versions of the fullscreen passes, interleaved:
 # every round benches GRAPH twice in one `pathlet bench` run, once with impl=fragment and once
 # with impl=compute for every pass named in PASSES, alternating which goes first (a noisy,
 # shared machine drifts between rounds). Prints per pass the medians of both versions and the

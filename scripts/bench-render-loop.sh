@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What the frame loop costs around the frames themselves (issue 34): wall clock of
+# What the frame loop costs around the frames themselves: wall clock of
 # `pathlet render` against startup + the frames' own time, and of the main job's kind of run
 # (PNGs and --video) against the same run with --no-images.
 #

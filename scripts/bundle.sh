@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A relocatable Pathlet for clusters and containers (issue 33): one tarball that runs wherever
+# A relocatable Pathlet for clusters and containers: one tarball that runs wherever
 # it is unpacked, for any user, without root, apt or environment variables.
 #   scripts/bundle.sh [--lean] [--from BUILD] OUT.tar.xz|OUT_DIR [-- CMAKE_ARGS...]
 #     --lean        built without OpenImageIO (PNG through stb; EXR refused), Embree (no ray-traced

@@ -6,7 +6,8 @@
 #   scripts/frame-table.sh                 render, compare with tests/frame_table.tsv, exit 1 on a difference
 #   scripts/frame-table.sh --update        render and rewrite the table (a deliberate change of pictures)
 #   scripts/frame-table.sh --keep DIR      ... and keep the rendered files in DIR (to look at a difference)
-# Checksums are of the files the graph captures (PNG, or EXR for float outputs), rendered on this
+# Checksums are of the pixels of the files the graph captures (PNG, or EXR for float outputs:
+# OpenImageIO's SHA-1 of the pixel data, so an EXR header's write time does not count), rendered on this
 # machine's GL (llvmpipe): another driver or LLVM version may differ by a bit, so the table is a
 # tool for one machine, not a CI test; the golden-image tests compare with a tolerance.
 set -euo pipefail
@@ -24,6 +25,9 @@ while [ $# -gt 0 ]; do
   shift
 done
 [ -x "$PATHLET" ] || { echo "frame-table: $PATHLET not built (scripts/build.sh --runtime)" >&2; exit 2; }
+command -v iinfo >/dev/null || { echo "frame-table: iinfo (openimageio-tools) not found" >&2; exit 2; }
+# The first 16 hex digits of the SHA-1 of a file's pixels.
+pixel_hash() { iinfo --hash "$1" | sed -n 's/^ *SHA-1: //p' | cut -c1-16; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe PATHLET_PLUGIN_PATH=
@@ -46,13 +50,13 @@ for file in graphs/*.json; do
       continue
     fi
     (cd "$out" && find . -type f | LC_ALL=C sort) | while read -r f; do
-      printf '%s\t%s\t%s\t%s\n' "$g" "$w" "${f#./}" "$(sha256sum "$out/$f" | cut -c1-16)" >>"$rows"
+      printf '%s\t%s\t%s\t%s\n' "$g" "$w" "${f#./}" "$(pixel_hash "$out/$f")" >>"$rows"
     done
   done
   echo "frame-table: $g" >&2
 done
 [ -n "$keep" ] && { mkdir -p "$keep"; cp -r "$work"/*-default "$work"/*-0 "$keep"/ 2>/dev/null || true; }
-header='# graph	window	file	sha256 (16 hex digits): scripts/frame-table.sh'
+header='# graph	window	file	pixels SHA-1 (16 hex digits): scripts/frame-table.sh'
 if [ "$update" = 1 ]; then
   { echo "$header"; cat "$rows"; } >"$TABLE.tmp" && mv "$TABLE.tmp" "$TABLE"
   echo "frame-table: wrote $TABLE ($(wc -l <"$rows") frames)"

@@ -16,12 +16,12 @@
 #                                      1 s window and with every line (--set window=0; there also
 #                                      variant 1 with cull=false): results.json, summary.csv; the
 #                                      printed tables in bench_*.txt
-#   compute_GRAPH.txt, compute.txt     fullscreen passes as fragment against compute (issue 34.5):
+#   compute_GRAPH.txt, compute.txt     fullscreen passes as fragment against compute:
 #                                      per pass both medians and compute/fragment, interleaved
 #                                      rounds (scripts/bench-compute.sh); the picture with every
 #                                      port forced each way (pathlet imagediff); the overlay's cost
 #                                      with and without its labels
-#   transparency/                      issue 42 at BENCH_SIZE: every transparency technique against the
+#   transparency/                      at BENCH_SIZE: every transparency technique against the
 #                                      exact reference (scripts/transparency-techniques.py --plots:
 #                                      speed, bytes a pixel, SSIM/PSNR/...), and the exact reference
 #                                      against depth peeling with every line (exact_vs_peel.txt)

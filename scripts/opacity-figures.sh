@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The opacity optimization figures of issue 36 (docs/opacity-optimization.md), on the built-in
+# The opacity optimization figures (docs/opacity-optimization.md), on the built-in
 # study phantom at t = 9.3 s (systole: the fast jet is at the pathlets' heads), 1 s window, 960x540
 # per picture, overlay off, variant 2 (left) and variant 4 with its defaults (right):
 #   docs/variant4_aneurysm.png  the descending aorta and the aneurysm from the side

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Does opacity optimization help? The measures of `pathlet quality --transparency` for variant 2,
-variant 4 at a few settings, and the two baselines of issue 36 tuned to each variant 4's mean
+variant 4 at a few settings, and two baselines tuned to each variant 4's mean
 pixel coverage: a uniform opacity and a speed -> opacity transfer function (both times the end
 fade, on variant2_oit_ao's pipeline). Each baseline is run on a grid of its parameter and
 interpolated at the coverage, then, for the first setting, tuned by bisection to confirm.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed, memory and fidelity of the transparency techniques in one table (issue 42).
+"""Speed, memory and fidelity of the transparency techniques in one table.
 
   scripts/transparency-techniques.py [EXPERIMENT] [--out DIR] [--plots] [--reference GRAPH] [--size WxH]
 

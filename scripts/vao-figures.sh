@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The object-space AO figures of issue 25 (README, "Object-space AO from line density"), on the
+# The object-space AO figures (docs/rendering.md, "Object-space AO from line density"), on the
 # built-in study phantom at 960x540, t = 9 s, 1 s window, overlay off:
 #   docs/vao_compare.png  the arch: variant 1 with LineAO and with volume AO (top), and their AO
 #                         maps beside the ray-traced AO of `pathlet quality` (bottom)

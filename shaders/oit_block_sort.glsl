@@ -32,7 +32,10 @@ OitBlockAfter oit_block_last() {
 
 // One round over the list at `head`: fills the block with the nearest fragments after `after`
 // and returns how many (< OIT_BLOCK: the list's last round). `walked`: the nodes walked; more
-// than max_walk only a corrupt (cyclic) list has: the walk stops there and `cut` says so.
+// than max_walk only a corrupt (cyclic) list has: the walk stops there and `cut` says so. `cut`
+// also says when the walk ended before the list did for any other reason: drivers end long
+// loops as if their condition were false (llvmpipe after 65535 iterations), which the node left
+// in hand shows.
 int oit_sort_block(uint head, OitBlockAfter after, uint max_walk, out uint walked, out bool cut) {
     int n = 0;
     walked = 0u;
@@ -40,11 +43,9 @@ int oit_sort_block(uint head, OitBlockAfter after, uint max_walk, out uint walke
     // Only the first n entries are read; setting the last keeps the compiler from warning.
     oit_block_dep[OIT_BLOCK - 1] = 1.0, oit_block_lid[OIT_BLOCK - 1] = 0u;
     oit_block_col[OIT_BLOCK - 1] = 0u, oit_block_idx[OIT_BLOCK - 1] = 0u;
-    for (uint i = head; i != OIT_END;) {
-        if (++walked > max_walk) {
-            cut = true;
-            break;
-        }
+    uint i = head;
+    for (; i != OIT_END;) {
+        if (++walked > max_walk) break;
         uvec4 node = texelFetch(u_nodes, int(i));
         uint self = i;
         i = oit_next(node);
@@ -67,6 +68,7 @@ int oit_sort_block(uint head, OitBlockAfter after, uint max_walk, out uint walke
         oit_block_col[j] = c;
         oit_block_idx[j] = self;
     }
+    cut = i != OIT_END;  // stopped at max_walk, or by the driver
     return n;
 }
 

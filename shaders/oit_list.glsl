@@ -1,5 +1,5 @@
-// Per-pixel linked lists for order-independent transparency (Yang et al. 2010; seed §III.b),
-// shared by clear_list, fill_list and resolve_list so their layout cannot disagree.
+// Per-pixel linked lists for order-independent transparency (Yang et al. 2010), shared by
+// clear_list, fill_list, resolve_list and resolve_exact so their layout cannot disagree.
 //   heads: r32ui image, one list head per pixel, OIT_END when empty (clear_list)
 //   nodes: a buffer of uvec4 (16 bytes) read through a buffer texture:
 //          x colour (packUnorm4x8, straight alpha), y linear depth (float bits),
@@ -23,9 +23,10 @@ float oit_depth(uvec4 n) { return uintBitsToFloat(n.y); }
 uint oit_next(uvec4 n) { return n.z; }
 uint oit_line(uvec4 n) { return n.w; }
 
-// The order every list resolve composites in: depth, then line id, then colour. Identical keys
-// are identical fragments, so the picture never depends on the order the rasteriser appended
-// them (and depth peeling, which peels by depth and line id, agrees: passes/depth_peel).
+// The order the list resolves sort in: depth, then line id, then colour. Identical keys are
+// identical fragments, so the picture never depends on the order the rasteriser appended them.
+// (resolve_exact composites the fragments at one depth as one layer, as depth peeling does:
+// oit_depth_group.glsl.)
 bool oit_nearer(float d, uint id, uint c, float d2, uint id2, uint c2) {
     return d < d2 || (d == d2 && (id < id2 || (id == id2 && c < c2)));
 }

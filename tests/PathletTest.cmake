@@ -4,7 +4,7 @@
 # pathlet_runtime: every built-in pass plugin, its shaders, the shared shaders and graphs and
 # the `pathlet` command (and the test fixture plugins). So a test never runs against a stale plugin or shader, and no test
 # lists its dependencies by hand. LIBS: pathlet::internal for the engine with its internals,
-# pathlet_data for the CPU-only data code.
+# pathlet_base and pathlet_data for the CPU-only ground floor and data code.
 # PATHLET_TEST_SOURCE_DIR is the folder of the first source (goldens/ and fixtures beside it).
 # Included by the top-level CMakeLists before passes/, so a pass folder can hold its own tests
 # (pathlet_add_pass(... TESTS ...)).

@@ -1,6 +1,6 @@
 #include "camera.hpp"
 
-#include "io/limits.hpp"
+#include "util/input_limits.hpp"
 #include "util/text.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -5,7 +5,9 @@
 #pragma once
 
 #include "frames/frames_in_flight.hpp"
+#include "gpu_waits/gpu_waits.hpp"
 #include "graph/graph_model.hpp"
+#include "pass_context.hpp"
 
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/pass.hpp>
@@ -25,17 +27,7 @@ class AsyncOutput;
 class GlContext;
 class Profiler;
 
-struct PassError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-struct FrameInfo {
-    uint64_t index = 0;
-    double time = 0.0;
-    Camera camera;
-};
-
-class Executor {
+class Executor : private PassHost {
 public:
     // `cg`, `scene` and `gl` must outlive the executor. `profiler` may be null.
     Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene, Profiler* profiler = nullptr);
@@ -51,30 +43,36 @@ public:
     void finish();
     // Frames a pass reported as incomplete (PassContext::frame_incomplete), by FrameInfo::index.
     const std::set<uint64_t>& incomplete_frames() const { return incomplete_; }
+    // Each pass's waits for the GPU in its execute() (counted under PATHLET_GL_DEBUG and the
+    // latency mode, gpu_waits/gpu_waits.hpp), by pass index.
+    const std::vector<GpuWaitCount>& gpu_waits() const { return gpu_waits_.counts(); }
     // After the owner of the compiled graph changed passes[i].params: the pass sees the new
     // parameters and its setup() runs again (the Pass contract), without rebuilding anything
     // else. Throws PassError naming the pass; the pass then keeps its old parameters.
     void reparam(size_t i);
 
-    const CompiledGraph& graph() const { return cg_; }
+    const CompiledGraph& graph() const override { return cg_; }
     Texture texture(const std::string& resource) const;  // current content (after run_frame)
     Buffer buffer(const std::string& resource) const;
-    std::vector<std::string> shader_dirs_for(const PassTypeInfo& type) const;
+    // Where pass i's shaders come from (its search path and hook files): what the viewer watches.
+    const ShaderSource& shaders(size_t i) const { return contexts_.at(i)->shaders; }
 
 private:
-    friend struct PassContextImpl;
-    friend class PassContext;
-    struct Physical {
-        Texture tex;
-        Buffer buf;
-    };
+    // PassHost: what the passes' contexts ask for.
+    const GpuScene& scene() const override { return scene_; }
+    const FrameInfo& frame() const override { return frame_; }
+    Physical& physical(int resource, bool previous) override;
+    GLuint framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass) override;
+    GLuint empty_vertex_array() const override { return empty_vao_; }
+    void stat(const std::string& pass, const std::string& name, double value) override;
+    void frame_incomplete(uint64_t frame) override { incomplete_.insert(frame); }
+    AsyncOutput& pass_output() override;
+    void used(const PassBindings& bindings, int uniform_blocks) override;
+
     Physical make_physical(const PoolSlot& s, const std::string& label);
-    const Physical& physical(int resource, bool previous) const;
-    GLuint framebuffer(const std::vector<GLuint>& color, GLuint depth, int mip, const std::string& pass);
+    const Physical& current(int resource) const;
     void check_gl(const std::string& pass, const char* phase);
     void reset_gl_state();
-    void bind_pins(const PassContextImpl& impl);
-    int take_units(PassContextImpl& impl, bool image, int count, const std::string& uniform);
 
     GlContext& gl_;
     const CompiledGraph& cg_;
@@ -91,6 +89,7 @@ private:
     FrameInfo frame_;
     FramesInFlight frames_in_flight_;
     std::set<uint64_t> incomplete_;
+    GpuWaitCounter gpu_waits_;
     std::unique_ptr<AsyncOutput> pass_output_;  // PassContext::write_image's files (the capture pass)
 };
 

@@ -12,6 +12,12 @@ void PassRegistry::add(PassTypeInfo info) {
         throw std::runtime_error(info.plugin_file + ": pass type '" + info.type + "' is already registered by " +
                                  (it->second.plugin_file.empty() ? std::string("the engine") : it->second.plugin_file) +
                                  "; rename one of them or remove one plugin from the search path");
+    if (!info.gpu_wait_when.empty()) {
+        const ParamDecl* when = info.param(info.gpu_wait_when);
+        if (!when || when->type != ParamType::Bool)
+            throw std::runtime_error(info.plugin_file + ": pass type '" + info.type + "' declares that it waits for the GPU with '" +
+                                     info.gpu_wait_when + "', which is not one of its bool parameters");
+    }
     std::string name = info.type;
     types_.emplace(std::move(name), std::move(info));
 }

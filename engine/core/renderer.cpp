@@ -1,5 +1,7 @@
 #include "renderer.hpp"
 
+#include "render_job.hpp"
+
 #include "util/atomic_file.hpp"
 
 #include "executor.hpp"
@@ -116,38 +118,6 @@ std::string graph_display_name(const GraphFile& g) {
 
 std::string resolve_graph_path(const std::string& arg) { return find_graph_file(arg); }
 
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
-
-// Warm-up by time (RenderOptions::warmup_seconds): blocks of frames of a quarter second each,
-// finished on the GPU before the block's rate is taken, until `seconds` have passed and two
-// blocks in a row agree within 5 %. A GPU's clock governor needs seconds of load to settle.
-static void warm_up_by_time(double seconds, Profiler& profiler, const std::function<void()>& frame) {
-    using clock = std::chrono::steady_clock;
-    const auto since = seconds_since;
-    const auto start = clock::now();
-    const double cap = std::max(5.0, 4.0 * seconds), block = 0.25;
-    double previous = 0;
-    bool settled = false;
-    while (true) {
-        const auto b0 = clock::now();
-        int n = 0;
-        do {
-            frame();
-            ++n;
-        } while (since(b0) < block);
-        glFinish();  // warm-up only: the block's frames done, so its rate is the GPU's
-        const double rate = double(n) / since(b0);
-        settled = previous > 0 && std::fabs(rate / previous - 1.0) < 0.05;
-        if ((settled && since(start) >= seconds) || since(start) >= cap) break;
-        previous = rate;
-    }
-    profiler.end_warmup(since(start), settled);
-}
-
 std::string incomplete_frames_line(const RenderResult& r) {
     if (r.incomplete_frames.empty()) return "";
     std::string list;
@@ -158,147 +128,7 @@ std::string incomplete_frames_line(const RenderResult& r) {
 
 RenderResult render(Runtime& rt, const Scene& scene, const RenderOptions& opt,
                     const std::function<void(const Executor&, size_t)>& on_frame) {
-    RenderResult res;
-    GraphFile g = rt.load_graph(opt.graph_path, opt.sets);
-    if (!opt.quiet)
-        for (const auto& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
-    for (auto& r : g.resources)
-        if (std::find(opt.keep.begin(), opt.keep.end(), r.name) != opt.keep.end()) r.persistent = true;
-    // Supersampling: the graph runs at N x N the size with its pixel-measured parameters scaled
-    // (PassContext::pixel_scale), and every captured frame is box-filtered back to `size`.
-    const int ssaa = std::max(1, opt.ssaa);
-    const glm::ivec2 render_size = opt.size * ssaa;
-    res.compiled = compile_graph(g, rt.registry, render_size);
-    res.compiled.pixel_scale = float(ssaa);
-    const CompiledGraph& cg = res.compiled;
-    if (!opt.quiet)
-        for (const auto& c : cg.culled) std::fprintf(stderr, "note: pass '%s' culled: %s\n", c.name.c_str(), c.reason.c_str());
-
-    GlContext& gl = rt.ensure_gl(opt.quiet);
-    GpuScene gpu;
-    gpu.upload(scene);
-    res.profiler.init(opt.timing, gl.renderer());
-    res.profiler.set_warmup_frames(opt.warmup);
-    Executor exec(gl, cg, gpu, &res.profiler);
-    exec.setup();
-
-    CameraPath path;
-    if (!opt.camera_path.empty()) path = CameraPath::load(opt.camera_path);
-    Bounds bounds = scene.bounds();
-    // The data fills the frame; an orbit stands back far enough that it stays whole at every
-    // angle of the turn.
-    Camera base = opt.orbit_deg_per_s != 0.0 ? frame_bounds_orbit(bounds, framing_points(scene, 20000), render_size)
-                                             : frame_points(bounds, framing_points(scene), render_size);
-    auto camera_at = [&](double t) {
-        Camera c = opt.camera_path.empty() ? base : path.at(t, bounds, render_size);
-        if (opt.orbit_deg_per_s != 0.0) c = orbit(c, opt.orbit_deg_per_s, t, bounds, render_size);
-        return c;
-    };
-
-    std::string gname = graph_display_name(g);
-    std::vector<double> times;
-    for (double t : opt.time.times())
-        for (int k = 0; k < std::max(1, opt.repeat); ++k) times.push_back(t);
-    // Warm-up frames (JIT compiles shader variants on first use) are rendered, not written.
-    uint64_t index = 0;
-    const int shards = std::max(1, opt.shard_count);
-    auto mine = [&](size_t i) { return int(i % size_t(shards)) == opt.shard_index; };
-    size_t first = 0, count = 0;
-    while (first < times.size() && !mine(first)) ++first;
-    for (size_t i = 0; i < times.size(); ++i) count += mine(i);
-    auto stopped = [&] { return opt.stop && opt.stop(); };
-    if (count == 0 || stopped()) {  // more shards than frames, or stopped while setting up
-        res.interrupted = count > 0;
-        res.profiler.release_gl();
-        return res;
-    }
-    for (int w = 0; w < opt.warmup; ++w) exec.run_frame({index++, times[first], camera_at(times[first])});
-    if (opt.warmup_seconds > 0)
-        warm_up_by_time(opt.warmup_seconds, res.profiler,
-                        [&] { exec.run_frame({index++, times[first], camera_at(times[first])}); });
-
-    // Made on the first frame something uses: renders nobody reads (bench, --no-images) have none.
-    std::optional<AsyncOutput> output;
-    AsyncOutput::Options out_opt;
-    out_opt.ssaa = ssaa;
-    out_opt.ring_depth = size_t(std::max(1, opt.readback_frames));
-    out_opt.threads = opt.writer_threads;
-    out_opt.max_queued = size_t(std::max(0, opt.max_queued_images));
-    out_opt.on_image = opt.on_image;
-    out_opt.quiet = opt.quiet;
-    auto written = [&] { return output ? output->frames_written() : size_t(0); };
-
-    size_t done = 0;
-    std::set<std::string> cleaned;  // output folders cleared of stale temps
-    std::map<uint64_t, size_t> frame_number;  // executor index -> output frame number (not warm-up)
-    // 0 done before the first frame: a caller's clock (the progress line's rate) starts with the loop.
-    if (opt.on_frames) opt.on_frames(0, 0, count);
-    for (size_t i = 0; i < times.size(); ++i) {
-        if (!mine(i)) continue;
-        if (stopped()) {
-            res.interrupted = true;
-            break;
-        }
-        double t = times[i];
-        frame_number[index] = i;
-        exec.run_frame({index++, t, camera_at(t)});
-        std::vector<AsyncOutput::Capture> captures;
-        for (const auto& out : cg.outputs) {
-            const bool to_file = opt.write_images && !out.capture.empty();
-            const bool to_image = opt.on_image && &out == &cg.outputs.front();
-            if (!to_file && !to_image) continue;  // nobody uses its pixels: not read back
-            int r = cg.find_resource(out.resource);
-            const auto& rd = cg.resources[size_t(r)];
-            if (rd.kind != PinKind::Texture) continue;
-            AsyncOutput::Capture c;
-            c.what = "output '" + out.resource + "'";
-            c.tex = exec.texture(out.resource);
-            c.to_image = to_image;
-            if (to_file) {
-                std::string file = expand_pattern(out.capture,
-                                                  {{"out", opt.out_dir}, {"graph", gname}, {"output", out.resource},
-                                                   {"size", std::to_string(opt.size.x) + "x" + std::to_string(opt.size.y)}},
-                                                  i);
-                // A pattern without an extension: EXR keeps float outputs exact, PNG for the rest.
-                // (Asked of the pattern: expanded names like "soft.tmp_000" contain dots.)
-                if (fs::path(out.capture).extension().empty()) {
-                    const FormatInfo* fi = find_format(rd.internal_format);
-                    file += fi && (fi->is_float || fi->depth) ? ".exr" : ".png";
-                }
-                ensure_parent_dir(file);
-                // Once per folder: temps of a render that was killed are not left lying around.
-                if (cleaned.insert(fs::path(file).parent_path().string()).second)
-                    remove_stale_temps(fs::path(file).parent_path().string());
-                c.file = file;
-                res.files.push_back(file);
-            }
-            captures.push_back(std::move(c));
-        }
-        const auto t0 = std::chrono::steady_clock::now();
-        if (!captures.empty()) {
-            if (!output) output.emplace(out_opt);
-            output->capture(captures);
-        }
-        if (output) output->poll();  // what the GPU has copied goes to the writers, no waiting
-        res.output_s += seconds_since(t0);
-        if (on_frame) on_frame(exec, i);
-        ++done;
-        if (opt.on_progress) opt.on_progress(done, count);
-        if (opt.on_frames) opt.on_frames(done, written(), count);
-    }
-    exec.finish();  // late counts waited for: every incomplete frame is known
-    for (uint64_t k : exec.incomplete_frames())
-        if (auto it = frame_number.find(k); it != frame_number.end()) res.incomplete_frames.push_back(it->second);
-    std::sort(res.incomplete_frames.begin(), res.incomplete_frames.end());
-    const auto t0 = std::chrono::steady_clock::now();
-    if (output) output->finish();
-    res.output_drain_s = seconds_since(t0);
-    res.output_s += res.output_drain_s;
-    if (opt.on_frames) opt.on_frames(done, written(), count);
-    res.frames = done;
-    res.frames_read_back = output ? output->frames_captured() : 0;
-    res.profiler.release_gl();  // collects frames still in flight, then frees the queries
-    return res;
+    return RenderJob(rt, opt).run(scene, on_frame);
 }
 
 }  // namespace pathlet

@@ -88,7 +88,7 @@ std::vector<std::string> Runtime::user_sets(std::vector<std::string> sets) {
     std::set<std::string> hooks;  // the hook parameters' names of every loaded type
     for (const PassTypeInfo* t : registry.all())
         for (const ParamDecl& d : t->params)
-            if (!d.hook.empty()) hooks.insert(d.name);
+            if (d.hook) hooks.insert(d.name);
     for (auto& set : sets) {
         const size_t eq = set.find('=');
         if (eq == std::string::npos) continue;
@@ -110,11 +110,12 @@ std::vector<std::string> Runtime::user_sets(std::vector<std::string> sets) {
     return sets;
 }
 
-GraphFile Runtime::load_graph(const std::string& path, const std::vector<std::string>& sets) {
+GraphFile Runtime::load_graph(const std::string& path, const std::vector<std::string>& sets, SetsFrom from) {
     GraphFile g = parse_graph_file(path);
     load_graph_plugins(g);
     std::vector<Diagnostic> diags;
-    apply_overrides(g, sets, registry, diags, user_files);
+    apply_overrides(g, from == SetsFrom::user ? user_sets(sets) : sets, registry, diags, user_files);
+    diags.insert(diags.end(), g.hook_problems.begin(), g.hook_problems.end());  // a hook that cannot be used, before any work
     if (!diags.empty()) throw GraphError(diags);
     return g;
 }

@@ -45,11 +45,13 @@ struct Runtime {
     // there only when that file exists; else it is a name on the shader path or next to the
     // graph), made absolute and added to user_files. std::invalid_argument for a path to no file.
     std::vector<std::string> user_sets(std::vector<std::string> sets);
-    // Parses a graph file, loads its plugin folders and applies --set overrides (GraphError
-    // with every problem; a hook may be one of user_files): what render, view and graph do
-    // before compiling. g.notes says what the author may not expect (a replaced hook's
-    // parameters dropped).
-    GraphFile load_graph(const std::string& path, const std::vector<std::string>& sets);
+    // Who gave a run's --set texts: the user (the command line, Python: user_sets applies) or a
+    // file (an experiment, a viewer script: hooks by name, or files the user already named).
+    enum class SetsFrom { user, file };
+    // Parses a graph file, loads its plugin folders and applies --set overrides, which resolves
+    // its hooks (GraphError with every problem): what every command does before compiling.
+    // g.notes says what the author may not expect (a replaced hook's parameters dropped).
+    GraphFile load_graph(const std::string& path, const std::vector<std::string>& sets, SetsFrom from = SetsFrom::file);
     // Creates the GL context (once) and prints its renderer line unless quiet.
     GlContext& ensure_gl(bool quiet);
     // Text listing plugin problems and skipped files, to append to "unknown pass type" errors.

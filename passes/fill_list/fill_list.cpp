@@ -254,6 +254,9 @@ pathlet::PassTypeInfo fill_list_type() {
         .param_bool("never_drop", false,
                     "every frame waits for its node count and, on overflow, grows the buffer and draws again; a frame "
                     "over max_memory_mb fails instead of dropping (exact references: a wait per frame)")
+        .waits_for_gpu("never_drop (exact references): every frame reads its node count to grow the buffer and "
+                       "draw again before it drops a fragment",
+                       "never_drop")
         .input_texture("heads", "r32ui", "per-pixel list heads, cleared by clear_list")
         .input_buffer("counter", "node counter, cleared by clear_list")
         .output_texture("coverage", "depth24",

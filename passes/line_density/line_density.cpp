@@ -3,6 +3,7 @@
 // the longest side, two empty voxels of margin), cleared, then every segment of the window
 // splatted by line_density.comp. The volume is a storage buffer (layout: the kit's
 // line_density.glsl) that volume_ao, or a line pass through line_volume_ao.glsl, reads.
+#include <pathlet/gl_limits.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 
@@ -64,6 +65,8 @@ public:
                                      std::to_string(bytes_for(voxels) >> 20) + " MiB), beyond the cap of " +
                                      std::to_string(kMaxVoxels) + " voxels (" + std::to_string(bytes_for(kMaxVoxels) >> 20) +
                                      " MiB); lower grid");
+        pathlet::check_storage_block(bytes_for(voxels), "line_density's grid of " + std::to_string(voxels) + " voxels",
+                                     "at grid " + std::to_string(grid), "lower grid");
         voxels_ = voxels;
         h_ = h;
         origin_ = lo - float(kMargin) * h;
@@ -90,6 +93,9 @@ public:
         const Header head{{dims_[0], dims_[1], dims_[2], 1},
                           {origin_.x, origin_.y, origin_.z, h_},
                           {float(t0), float(t1), 0.0f, 0.0f}};
+        // The readers since the last rebuild (volume_ao, a list resolve) had the volume bound as
+        // a storage block: their access lands before this update only behind the barrier.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glNamedBufferSubData(buf.id, 0, sizeof head, &head);
         const GLuint zero = 0;
         glClearNamedBufferSubData(buf.id, GL_R32UI, GLintptr(sizeof head), GLsizeiptr(4 * voxels_), GL_RED_INTEGER,

@@ -167,7 +167,9 @@ pathlet::PassTypeInfo lineao_type() {
         .param_enum("resolution", "full", {"full", "half"},
                     "half: the term for one pixel in each 2x2 block, then a depth-aware upsampling (about a "
                     "quarter of the cost; measured difference in docs/quality.md); full: every pixel")
-        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
+        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w); its line pass's "
+                       "line_width and width_factor must be this pass's",
+                       {.same_params = {"line_width", "width_factor"}})
         .input_texture("pyramid", "rgba16f", "gauss_pyramid output; mip l is read by level l", {.optional = true})
         .input_texture("zoom", "r32f", "pixels per world unit at the fragment")
         .input_texture("color", "any", "line colour (not used by the AO term; accepted for graph symmetry)",

@@ -5,6 +5,7 @@
 // divides the two and puts the result over the background with exp(-b0). No order, no lists, no
 // sync: blending only, as every GL 4.5 driver has it.
 #include <pathlet/lines.hpp>
+#include <pathlet/oit.hpp>
 #include <pathlet/plugin.hpp>
 
 #include <stdexcept>
@@ -15,30 +16,18 @@ namespace {
 
 namespace lines = pathlet::lines;
 
-// The moment bias for 4, 6 and 8 float32 power moments: the paper's for 4
-// (Münstermann et al. 2018; LineVis' MBOITRenderer.cpp quotes its 5e-7, 5e-6, 5e-5). For 6
-// and 8 the paper's larger values guard its expectation through monomials, which cancels;
-// mboit_math.glsl sums positive Christoffel weights instead, and 5e-7 was nearer the exact
-// picture on both phantoms (README: study phantom, every line: SSIM 0.873 at 5e-7 with 8
-// moments against 0.854 at the paper's 5e-5).
-// The trigonometric forms: the paper's for float32, 4e-7, 8e-7 and 1.5e-6 for 2, 3, 4 moments.
-constexpr float kDefaultBias[6] = {5e-7f, 5e-7f, 5e-7f, 4e-7f, 8e-7f, 1.5e-6f};
-
 class MboitAccum : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        form_ = ctx.params().index("moment_form");
-        const bool trig = form_ >= 3;
-        const int order = trig ? form_ - 1 : 2 + form_;
-        // The form is the writer's too (the graph variable `moments` feeds both); the high
-        // moments must then be wired (with power4 a connected moments_high is left unread).
-        if (order > 2 && !ctx.connected("moments_high"))
+        form_ = &pathlet::oit::moment_form(ctx.params());
+        // The form is the writer's too (the graph compiler checks); the high moments must then be
+        // wired (with power4 a connected moments_high is left unread).
+        if (form_->needs_high() && !ctx.connected("moments_high"))
             throw std::runtime_error("moment_form=" + ctx.params().s("moment_form") +
                                      " reads 'moments_high' (more than 4 floats): connect it to mboit_moments' output of that "
                                      "name, with the same moment_form there (graphs/variant2_mboit8.json does)");
         std::vector<std::string> defines = lines::core_ao_defines(ctx);
-        defines.push_back("MBOIT_ORDER " + std::to_string(order));
-        if (trig) defines.push_back("MBOIT_TRIG");
+        for (const std::string& d : form_->defines()) defines.push_back(d);
         prog_ = &lines::program(ctx, {"mboit_accum.frag"}, lines::hooks(ctx), defines);
         drawer_.set_depth_func(GL_ALWAYS);
         drawer_.set_blending(true);
@@ -52,14 +41,14 @@ public:
         glBlendFunc(GL_ONE, GL_ONE);
         prog_->use();
         const float bias = ctx.params().f("moment_bias");
-        prog_->set("u_bias", bias < 0.0f ? kDefaultBias[form_] : bias);
+        prog_->set("u_bias", bias < 0.0f ? form_->default_bias : bias);
         drawer_.draw(ctx, *prog_);
     }
 
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     lines::Drawer drawer_;
-    int form_ = 0;
+    const pathlet::oit::MomentForm* form_ = nullptr;
 };
 
 pathlet::PassTypeInfo mboit_accum_type() {
@@ -75,13 +64,14 @@ pathlet::PassTypeInfo mboit_accum_type() {
                      "how far the normalised moments are moved towards the uniform distribution's before the "
                      "reconstruction; < 0: 5e-7 for the power forms (the paper's for 4 float32 moments; for 6 and 8 "
                      "it gives 5e-6 and 5e-5, which this reconstruction does not need: README), the paper's 4e-7, "
-                     "8e-7, 1.5e-6 for trig2..trig4")
-        .param_enum("moment_form", "power4", {"power4", "power6", "power8", "trig2", "trig3", "trig4"},
-                    "the moments mboit_moments keeps (give both passes the same, e.g. through a graph variable): "
-                    "power4, trig2, or power6, power8, trig3, trig4 with 'moments_high' connected")
-        .input_texture("b0", "r32f", "the total absorbance (mboit_moments)")
-        .input_texture("moments", "rgba32f", "moments 1..4 (mboit_moments)")
-        .input_texture("moments_high", "rgba32f", "moments 5..8 (mboit_moments' with power6, power8)", {.optional = true})
+                     "8e-7, 1.5e-6 for trig2..trig4");
+    // mboit_moments must have drawn the same fragments with the same form: every parameter the
+    // two passes share is checked when the graph compiles.
+    pathlet::oit::declare_moment_form(b)
+        .input_texture("b0", "r32f", "the total absorbance (mboit_moments)", {.same_params = {"*"}})
+        .input_texture("moments", "rgba32f", "moments 1..4 (mboit_moments)", {.same_params = {"*"}})
+        .input_texture("moments_high", "rgba32f", "moments 5..8 (mboit_moments' with power6, power8)",
+                       {.optional = true, .same_params = {"*"}})
         .output_texture("accum", "rgba16f", "sum of premultiplied colour x transmittance (rgb) and alpha x "
                         "transmittance (a)");
     lines::declare_core_ao_inputs(b);

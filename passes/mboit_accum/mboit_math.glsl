@@ -5,12 +5,22 @@
 //     distribution on [-1, 1] (0, 1/3, 0, 1/5, ..), so the Hankel matrix H_ij = m_(i+j),
 //     i, j = 0..n, is positive definite; H = L D L^T. In exact arithmetic the bias gives
 //     D_jj >= bias x D_jj of the uniform distribution (D_jj = min E[p^2] over monic p of
-//     degree j, and E is a mix of the data's and the uniform's). A pixel with fewer layers
-//     than n has D_jj at that floor, and float32 sums leave rounding noise there: the roots
-//     of step 2 are then garbage (lone lines dropped out in dashes with 4 moments on the CFD
-//     aorta; an earlier 6/8-moment attempt drew white single-fragment pixels). So the order
-//     is cut at the first D_jj below that floor: such a pixel's distribution has fewer than
-//     j separable points, which the leading block holds.
+//     degree j, and E is a mix of the data's and the uniform's). That floor is reached only
+//     where the data's points add nothing to the minimum, which is rare: one fragment at z has
+//     D_11 = bias (1/3 + (1 - bias) z^2), above the floor unless z = 0, because the mixture
+//     adds the term between the two means. So a pixel with fewer layers than n has D_jj of
+//     the floor's order (about bias), not at it, and float32 sums leave rounding noise there:
+//     the roots of step 2 can be garbage (lone lines dropped out in dashes with 4 moments on
+//     the CFD aorta; an earlier 6/8-moment attempt drew white single-fragment pixels). The
+//     order is cut at the first D_jj at or below the floor, where it is noise for certain.
+//     That cut does not catch most such pixels; what makes them come out right is step 3 at
+//     the fragment's own depth: there every orthogonal polynomial y_j (j >= 1) of the
+//     pixel's distribution nearly vanishes (one fragment at z_a: y_1(z_a) = bias z_a), so
+//     K(z0, z0) = sum y_j(z0)^2 / D_jj is near 1 and the weight at z0 holds nearly all the
+//     mass, whatever the noisy D_jj do to the other support points. With 6 and 8 moments at
+//     the default bias the floors of D_33 and D_44 (5e-7 x 4/175 = 1.1e-8, 5e-7 x 64/11025 =
+//     2.9e-9) lie below float32 rounding of the moments (|m| x eps, about 1e-7): for pixels
+//     of 2 or 3 layers the cut fires only where that noise comes out negative.
 //  2. H_k c = (1, z0, .., z0^k) on the leading block; the k real roots of sum c_i x^i with z0
 //     are the support of the distribution with these moments that has a point at z0 (its
 //     canonical representation): closed forms below, roots of cubics and quartics polished
@@ -39,8 +49,8 @@ void mboit_quadratic_roots(float a2, float a1, float a0, out float r0, out float
 #endif
 const int kMboitN = MBOIT_ORDER;
 const float kMboitUniformD[5] = float[5](1.0, 1.0 / 3.0, 4.0 / 45.0, 4.0 / 175.0, 64.0 / 11025.0);
-// D_jj below the bias' floor is rounding noise for certain (a larger factor cut real layers
-// of the phantoms' tight bundles and made the picture worse).
+// D_jj at or below the bias' floor is rounding noise for certain (a larger factor cut real
+// layers of the phantoms' tight bundles and made the picture worse).
 const float kMboitKeep = 1.0;
 
 // c[0] + c[1] x + .. + c[4] x^4 and its derivative (coefficients above the order are 0).
@@ -196,7 +206,8 @@ float mboit_transmittance(float b0, float b[8], float z0, float bias, float beta
     if (b0 <= 1e-6) return 1.0;
     vec4 m = mix(vec4(b[0], b[1], b[2], b[3]) / b0, vec4(0.0, 1.0 / 3.0, 0.0, 1.0 / 5.0), bias);
     float d1 = m.y - m.x * m.x;
-    if (!(d1 > kMboitKeep * bias * kMboitUniformD[1])) return clamp(exp(-b0 * beta), 0.0, 1.0);  // one depth
+    // D_11 at the floor: one depth, at z = 0 (anywhere else it lies above; see step 1).
+    if (!(d1 > kMboitKeep * bias * kMboitUniformD[1])) return clamp(exp(-b0 * beta), 0.0, 1.0);
     float inv_d1 = 1.0 / d1;
     float l21 = (m.z - m.x * m.y) * inv_d1;
     float d2 = (m.w - m.y * m.y) - l21 * l21 * d1;

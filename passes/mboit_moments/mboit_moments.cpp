@@ -5,6 +5,7 @@
 // every fragment's transmittance; oit_composite takes b0 as the pixel's total. 20 bytes a pixel;
 // with `moments` power6 or power8 the moments z^5..z^8 go to `moments_high` (16 more).
 #include <pathlet/lines.hpp>
+#include <pathlet/oit.hpp>
 #include <pathlet/plugin.hpp>
 
 #include <stdexcept>
@@ -15,32 +16,18 @@ namespace {
 
 namespace lines = pathlet::lines;
 
-// moment_form's choices: power4, power6, power8 (2n power moments) and trig2, trig3, trig4 (n
-// trigonometric ones). n, the Hankel or Toeplitz order, is what both shaders compile with
-// (MBOIT_ORDER, with MBOIT_TRIG for the trigonometric forms); n > 2 needs moments_high.
-const std::vector<std::string> kForms = {"power4", "power6", "power8", "trig2", "trig3", "trig4"};
-int mboit_order(const pathlet::PassContext& ctx) {
-    const int i = ctx.params().index("moment_form");
-    return i < 3 ? 2 + i : i - 1;
-}
-std::vector<std::string> mboit_defines(const pathlet::PassContext& ctx) {
-    std::vector<std::string> d = {"MBOIT_ORDER " + std::to_string(mboit_order(ctx))};
-    if (ctx.params().index("moment_form") >= 3) d.push_back("MBOIT_TRIG");
-    return d;
-}
-
 class MboitMoments : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
         coverage_ = ctx.connected("coverage");
-        const int order = mboit_order(ctx);
-        high_ = order > 2;
+        const pathlet::oit::MomentForm& form = pathlet::oit::moment_form(ctx.params());
+        high_ = form.needs_high();
         if (high_ && !ctx.connected("moments_high"))
             throw std::runtime_error("moment_form=" + ctx.params().s("moment_form") +
                                      " keeps more than 4 floats of moments: connect the output 'moments_high' (rgba32f) "
                                      "to mboit_accum's input of that name (graphs/variant2_mboit8.json does; "
                                      "variant2_mboit keeps 4: power4, trig2)");
-        prog_ = &lines::program(ctx, {"mboit_moments.frag"}, lines::hooks(ctx), mboit_defines(ctx));
+        prog_ = &lines::program(ctx, {"mboit_moments.frag"}, lines::hooks(ctx), form.defines());
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment counts; the depth only records coverage
         drawer_.set_blending(true);
     }
@@ -70,11 +57,8 @@ pathlet::PassTypeInfo mboit_moments_type() {
                                "moment-based OIT (Münstermann et al. 2018), pass 1 of 2: each pixel's total "
                                "absorbance and its power moments of the log-warped depth, by additive blending (20 "
                                "bytes a pixel with 4 moments)");
-    lines::declare_params(b, {.color = "fade_opacity.frag"})
-        .param_enum("moment_form", "power4", kForms,
-                    "the moments of the warped depth each pixel keeps (float32): power4 (20 bytes a pixel with b0), "
-                    "power6, power8 (36, in moments_high); trig2 (20), trig3, trig4 (36): 2..4 trigonometric moments "
-                    "of the depth as an angle; mboit_accum must be given the same (a graph variable feeds both)")
+    lines::declare_params(b, {.color = "fade_opacity.frag"});
+    pathlet::oit::declare_moment_form(b)
         .output_texture("b0", "r32f", "the pixel's total absorbance, sum of -ln(1 - alpha)")
         .output_texture("moments", "rgba32f", "sum of absorbance x z^k, k = 1..4 (z: log depth warped to [-1, 1]); "
                         "trig: x e^(i k phi), k = 1, 2 (phi: z as an angle, mboit_common.glsl)")

@@ -8,6 +8,7 @@
 // (llvmpipe) fails here, at setup, with one line; no fallback is used (a spinlock is not
 // deadlock-free where fragments of one pixel share a SIMD group, and MLAB's merge depends on the
 // order). Then a fullscreen resolve composites bucket and nodes front to back.
+#include <pathlet/gl_limits.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
@@ -37,6 +38,11 @@ bool has_extension(const char* name) {
 class MlabBlend : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
+        // The size first: a picture the nodes cannot hold is refused on every driver alike.
+        const glm::ivec2 size = ctx.output_size();
+        pathlet::check_storage_block(node_bytes(ctx), "mlab_blend's nodes (" + std::to_string(ctx.params().i("layers")) +
+                                                           " layers and the front bucket, 8 bytes each a pixel)",
+                                     pathlet::at_picture_size(size.x, size.y), "fewer layers or a smaller picture fit");
         if (!has_extension(kInterlock)) {
             const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
             std::string driver = renderer ? renderer : "unknown";
@@ -55,9 +61,11 @@ public:
 
     void execute(pathlet::PassContext& ctx) override {
         const glm::ivec2 size = ctx.output_size();
-        const size_t slots = size_t(ctx.params().i("layers")) + 1;  // the front bucket and the nodes
-        const pathlet::Buffer nodes = ctx.grow_buffer("nodes", size_t(size.x) * size_t(size.y) * slots * kNodeBytes);
+        const pathlet::Buffer nodes = ctx.grow_buffer("nodes", node_bytes(ctx));
         const GLuint zero = 0;
+        // The last frame's gather wrote the nodes as a storage block: its writes land before
+        // the clear only behind a buffer-update barrier.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glClearNamedBufferData(nodes.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);  // every slot empty
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         ctx.bind_framebuffer({});  // no attachments: the nodes are the pass's only writes
@@ -74,6 +82,12 @@ public:
     }
 
 private:
+    static size_t node_bytes(const pathlet::PassContext& ctx) {
+        const glm::ivec2 size = ctx.output_size();
+        const size_t slots = size_t(ctx.params().i("layers")) + 1;  // the front bucket and the nodes
+        return size_t(size.x) * size_t(size.y) * slots * kNodeBytes;
+    }
+
     pathlet::ShaderProgram* gather_ = nullptr;
     pathlet::ShaderProgram* resolve_ = nullptr;
     lines::Drawer drawer_;
@@ -87,7 +101,9 @@ pathlet::PassTypeInfo mlab_blend_type() {
     lines::declare_params(b, {.color = "fade_opacity.frag"})
         .param_int("layers", 4, 1, 8, "nodes per pixel behind the front bucket (8 bytes each; Kern et al.: 4)")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour behind all fragments")
-        .input_texture("bucket", "rg32f", "mlab_bucket's depths: the front bucket's end and the nearest opaque fragment")
+        .input_texture("bucket", "rg32f", "mlab_bucket's depths: the front bucket's end and the nearest opaque fragment "
+                       "(of the same fragments: every parameter the two passes share must agree)",
+                       {.same_params = {"*"}})
         .internal_buffer("nodes", "per pixel the front bucket and the layers (8 bytes each), cleared every frame",
                          {.bytes = 16})
         .output_texture("color", "rgba8", "composited colour, alpha 1 where any fragment landed");

@@ -47,7 +47,8 @@ pathlet::PassTypeInfo mlab_bucket_type() {
     lines::declare_params(b, {.color = "fade_opacity.frag"})
         .param_float("lower_opacity", 0.2, 0.0, 1.0,
                      "fragments more opaque than this start mlab_blend's layers; fainter ones in front of the first "
-                     "share the front bucket (Kern et al.: 0.2)")
+                     "share the front bucket (Kern et al.: 0.2)",
+                     {.at_most = "upper_opacity"})
         .param_float("upper_opacity", 0.98, 0.0, 1.0,
                      "a fragment at least this opaque hides what lies behind it (Kern et al.: 0.98; 0.06 for UCLA)")
         .output_texture("bucket", "rg32f", "nearest depth above lower_opacity (r) and at or above upper_opacity (g); "

@@ -9,6 +9,7 @@
 // Time: dt is the change of the animation time since the last frame. A frame that does not move
 // the clock (a paused viewer, a still rendered again) counts as kStillStep, so a frozen view
 // still converges; a jump back (a loop) takes this frame's values.
+#include <pathlet/gl_limits.hpp>
 #include <pathlet/plugin.hpp>
 #include <pathlet/shader.hpp>
 
@@ -31,6 +32,9 @@ public:
         const pathlet::Params& p = ctx.params();
         const pathlet::Buffer segments = ctx.buffer("segments"), targets = ctx.buffer("targets");
         const size_t bound = segments.bytes / 4;  // >= segments, >= header + line table
+        pathlet::check_storage_block(8 * bound, "opacity_blend's state (8 bytes a segment)",
+                                     "for " + std::to_string(bound) + " words of opacity_lists' segments",
+                                     "a longer segment_length in opacity_lists makes fewer");
         ctx.grow_buffer("opacity", segments.bytes);
         ctx.grow_buffer("smooth_a", 4 * bound);
         ctx.grow_buffer("smooth_b", 4 * bound);

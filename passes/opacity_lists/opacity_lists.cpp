@@ -19,6 +19,7 @@
 // grow for the frames after it. finish() waits for the counts in flight at the end of a run.
 #include "segmentation.hpp"
 
+#include <pathlet/gl_limits.hpp>
 #include <pathlet/gpu_readback.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/plugin.hpp>
@@ -131,13 +132,14 @@ public:
         const uint32_t generation = g_generation.fetch_add(1);
         const std::vector<uint32_t> with_importance = oo::pack(seg, generation, &g);
         segments_bytes_ = 4 * (with_importance.size() - seg.segments());  // the public part
+        pathlet::check_storage_block(4 * with_importance.size(), "opacity_lists' segments and importance",
+                                     "for " + std::to_string(seg.segments()) + " segments", "raise segment_length");
         const pathlet::Buffer source = ctx.grow_buffer("source", 4 * with_importance.size());
         glNamedBufferSubData(source.id, 0, GLsizeiptr(4 * with_importance.size()), with_importance.data());
         ctx.grow_buffer("segments", segments_bytes_);
         segments_ = seg.segments();
 
-        GLint64 max_block = 0;
-        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+        const GLint64 max_block = pathlet::gl_limits().get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
         const size_t cap = size_t(p.f("max_memory_mb") * 1048576.0);
         max_bytes_ = std::max<size_t>(64, std::min(size_t(std::max<GLint64>(max_block, 0)), cap));
         if (!counts_) counts_ = std::make_unique<pathlet::GpuReadback>(sizeof(GLuint));

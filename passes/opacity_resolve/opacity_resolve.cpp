@@ -105,7 +105,8 @@ pathlet::PassTypeInfo opacity_resolve_type() {
                      "clears with 0.37 q and r)")
         .param_float("adapt_exponent", 1.0, 0.0, 8.0, "adapt: how steeply q and r follow the depth complexity")
         .param_float("adapt_min", 0.25, 0.0, 1000.0,
-                     "adapt: the least factor of q and r (a very sparse picture still clears where focus is hidden)")
+                     "adapt: the least factor of q and r (a very sparse picture still clears where focus is hidden)",
+                     {.at_most = "adapt_max"})
         .param_float("adapt_max", 4.0, 0.0, 1000.0, "adapt: the largest factor of q and r")
         .param_int("max_fragments", 32, 1, 64,
                    "nearest fragments per pixel that get an opacity (all of them count as occluders); a longer list "

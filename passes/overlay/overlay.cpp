@@ -309,7 +309,8 @@ PATHLET_PLUGIN("overlay", {
                   .param_enum("colormap", "green_red", pathlet::lines::colormaps(),
                               "the line pass's colour map (tie both to one graph variable); direction shows an x/y/z key")
                   .param_float("speed_min", 0.0, -1.0, 1e9,
-                               "speed at the bar's bottom, as the line pass's; <= 0: the data's 1st percentile")
+                               "speed at the bar's bottom, as the line pass's; <= 0: the data's 1st percentile",
+                               {.at_most = "speed_max", .automatic_at_or_below = 0.0})
                   .param_float("speed_max", 0.0, -1.0, 1e9,
                                "speed at the bar's top, as the line pass's; <= 0: the data's 99th percentile")
                   .param_string("speed_unit", "",
@@ -322,7 +323,9 @@ PATHLET_PLUGIN("overlay", {
                                             "DejaVu Sans (share/pathlet/fonts, else fonts-dejavu-core); one that cannot be "
                                             "used gives a warning and the built-in font")
                   .param_color("text_color", {0.12f, 0.12f, 0.12f}, "colour of the text and the bar's frame")
-                  .input_texture("color", "rgba8", "the finished image")
+                  .input_texture("color", "rgba8", "the finished image (its legend must be the lines': colormap, "
+                                 "speed_min and speed_max as the nearest line pass before it has them)",
+                                 {.same_params = {"colormap", "speed_min", "speed_max"}})
                   .output_texture("final", "rgba8", "the image with time and legend")
                   .make<Overlay>());
 })

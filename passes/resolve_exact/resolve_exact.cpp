@@ -1,9 +1,10 @@
-// resolve_exact: the exact reference of the list techniques (issue 42). Like resolve_list it
-// composites each pixel's linked list front to back, but with every fragment: no cap on the
-// list (a bounded block sorted in rounds, resolve_exact.frag), termination only when the
-// transmittance left is below min_transmittance (1e-4), ties by line id. With fill_list's
-// never_drop the lists hold every fragment, so the picture is exact by construction; the
-// pass reports what it needed (peak list length, sorting rounds).
+// resolve_exact: the exact reference of the list techniques. Like resolve_list it composites
+// each pixel's linked list front to back, but with every fragment: no cap on the list (a bounded
+// block sorted in rounds, resolve_exact.frag), termination only when the transmittance left is
+// below min_transmittance (1e-4), the fragments at one depth one layer (oit_depth_group.glsl, as
+// depth_peel). With fill_list's never_drop the lists hold every fragment, so the picture is
+// exact by construction; a pixel whose walk was cut anyway (a corrupt list, a driver's loop
+// limit) makes its frame incomplete. The pass reports what it needed (peak list length, rounds).
 #include <pathlet/gpu_readback.hpp>
 #include <pathlet/lines.hpp>
 #include <pathlet/oit.hpp>
@@ -30,6 +31,9 @@ public:
         const GLuint nodes = ctx.buffer_texture("nodes", pathlet::oit::kNodeFormat);  // fill_list may have grown it
         const GLuint stats = ctx.buffer("stats").id;
         const GLuint zero[4] = {0, 0, 0, 0};
+        // The last frame's draws wrote stats (atomics) and state (image stores): their writes
+        // land before these updates only behind the update barriers.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
         glNamedBufferSubData(stats, 0, sizeof(zero), zero);
         const GLuint fresh = 0;
         glClearTexImage(ctx.texture("state").id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &fresh);
@@ -42,13 +46,14 @@ public:
         prog_->bind_texture("u_nodes", nodes);
         prog_->use();  // heads, carry, last, state, stats and the parameters by declaration
         prog_->set("u_visit_budget", int(kVisitBudget));
-        // Draws until no pixel is pending: the pending count is read back after each draw (a
-        // wait; the reference is asked for its pixels). Most frames finish in the first draw.
+        // Draws until no pixel is pending: the cut and pending counts are read back after each
+        // draw (a wait; the reference is asked for its pixels). Most frames finish in the first.
         const int max_draws = ctx.params().i("max_draws");
         int draws = 0;
-        for (GLuint pending = 1; pending; ++draws) {
+        GLuint cut_pending[2] = {0, 1};  // stats words 2 and 3: pixels cut (this frame), pixels pending
+        for (; cut_pending[1]; ++draws) {
             if (draws == max_draws)
-                throw std::runtime_error(std::to_string(pending) + " pixels still pending after max_draws = " +
+                throw std::runtime_error(std::to_string(cut_pending[1]) + " pixels still pending after max_draws = " +
                                          std::to_string(max_draws) + " draws of " + std::to_string(kVisitBudget) +
                                          " node visits each; raise max_draws");
             glNamedBufferSubData(stats, 3 * sizeof(GLuint), sizeof(GLuint), &zero[0]);
@@ -60,22 +65,25 @@ public:
                 ctx.draw_fullscreen();
             }
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-            glGetNamedBufferSubData(stats, 3 * sizeof(GLuint), sizeof(GLuint), &pending);
+            glGetNamedBufferSubData(stats, 2 * sizeof(GLuint), sizeof cut_pending, cut_pending);
         }
         ctx.stat("draws", double(draws));
-        // The other statistics through a fenced copy, read a frame or two late on a GPU.
-        if (!stats_) stats_ = std::make_unique<pathlet::GpuReadback>(sizeof stats_seen_);
-        if (const void* p = stats_->poll_newest()) std::memcpy(stats_seen_, p, sizeof stats_seen_);
+        // This frame's own count, never an older or newer frame's: a cut pixel holds only part
+        // of its fragments, so the frame is not exact (render's "incomplete frames" line).
+        ctx.stat("truncated_pixels", double(cut_pending[0]));
+        if (cut_pending[0]) ctx.frame_incomplete(ctx.frame_index());
+        // The peaks through a fenced copy, read a frame or two late on a GPU (only statistics).
+        if (!stats_) stats_ = std::make_unique<pathlet::GpuReadback>(sizeof peaks_seen_);
+        if (const void* p = stats_->poll_newest()) std::memcpy(peaks_seen_, p, sizeof peaks_seen_);
         stats_->copy(stats, 0);
-        ctx.stat("peak_nodes_per_pixel", double(stats_seen_[0]));
-        ctx.stat("peak_sort_rounds", double(stats_seen_[1]));
-        ctx.stat("truncated_pixels", double(stats_seen_[2]));
+        ctx.stat("peak_nodes_per_pixel", double(peaks_seen_[0]));
+        ctx.stat("peak_sort_rounds", double(peaks_seen_[1]));
     }
 
 private:
     pathlet::ShaderProgram* prog_ = nullptr;
     std::unique_ptr<pathlet::GpuReadback> stats_;
-    GLuint stats_seen_[4] = {0, 0, 0, 0};  // the newest statistics known
+    GLuint peaks_seen_[2] = {0, 0};  // the newest peaks known: list length, sorting rounds
     // Node visits per pixel and draw: far below the loop lengths drivers cut (llvmpipe cut
     // pixels of 125 rounds x 253 fragments), so only a single list this long is ever cut.
     static constexpr unsigned kVisitBudget = 8192;
@@ -83,9 +91,9 @@ private:
 
 pathlet::PassTypeInfo resolve_exact_type() {
     pathlet::PassTypeBuilder b("resolve_exact",
-                               "the exact list resolve (issue 42): every fragment of each pixel's list, sorted by depth "
-                               "(ties by line id, then colour) in rounds of a bounded block, composited front to back "
-                               "until the transmittance left is below min_transmittance; no fragment cap");
+                               "the exact list resolve: every fragment of each pixel's list, sorted by depth in rounds "
+                               "of a bounded block and composited front to back (the fragments at one depth as one "
+                               "layer) until the transmittance left is below min_transmittance; no fragment cap");
     return pathlet::oit::declare_sort_block(b, "; a longer list takes more rounds, never fewer fragments")
         .param_float("min_transmittance", 1e-4, 0.0, 1.0,
                      "stop compositing a pixel when the light left through its fragments is below this (0: every "
@@ -104,10 +112,14 @@ pathlet::PassTypeInfo resolve_exact_type() {
                          "limit) and pixels pending for the next draw (uints)",
                          {.bytes = 16})
         .internal_texture("carry", "rgba32f", "a pending pixel's colour so far and transmittance left")
-        .internal_texture("last", "rgba32ui", "a pending pixel's last fragment composited: depth bits, line id, "
+        .internal_texture("layer", "rgba32f", "a pending pixel's open layer: its fragments at one depth summed "
+                                              "(shaders/oit_depth_group.glsl)")
+        .internal_texture("last", "rgba32ui", "a pending pixel's last fragment taken: depth bits, line id, "
                                               "colour, node index")
         .internal_texture("state", "r32ui", "per pixel: fresh, pending or done (this frame)")
         .output_texture("color", "rgba8", "composited colour, alpha 1 where any fragment landed")
+        .waits_for_gpu("an exact reference: after each draw it reads how many pixels are still pending, to draw "
+                       "again until none is")
         .make<ResolveExact>();
 }
 

@@ -128,7 +128,10 @@ pathlet::PassTypeInfo resolve_list_type() {
             .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core)", {.optional = true})
             .input_texture("coverage", "depth24",
                            "fill_list's coverage depth: when connected, pixels without fragments are only cleared", {.optional = true})
-            .input_buffer("records", "fill_list's records: with density, every fragment is shaded by its own AO", {.optional = true})
+            .input_buffer("records",
+                          "fill_list's records: with density, every fragment is shaded by its own AO (fill_list's "
+                          "line_width and width_factor must be this pass's)",
+                          {.optional = true, .same_params = {"line_width", "width_factor"}})
             .input_buffer("density", "the line-density volume (line_density), with records", {.optional = true})
             .internal_buffer("stats", "peak list length and truncated pixels of the frame (two uints)", {.bytes = 16})
             .output_texture("color", "rgba8",

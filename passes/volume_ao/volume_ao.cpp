@@ -56,7 +56,9 @@ pathlet::PassTypeInfo volume_ao_type() {
         .param_float("screen_weight", 0.5, 0.0, 1.0,
                      "with screen_ao connected (the hybrid): AO x mix(1, screen_ao, screen_weight)")
         .input_buffer("density", "the line-density volume (line_density)")
-        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w)")
+        .input_texture("normal_depth", "rgba16f", "view-space normal (xyz), normalised linear depth (w); its line pass's "
+                       "line_width and width_factor must be this pass's",
+                       {.same_params = {"line_width", "width_factor"}})
         .input_texture("tangent", "rgba16f", "the G-buffer's tangent target: tangent (xyz), eye depth to the axis (w)")
         .input_texture("depth", "depth24", "G-buffer depth; when connected, background pixels are skipped",
                        {.optional = true})

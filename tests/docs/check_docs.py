@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The README and docs/*.md still work as written (issue 35).
+"""The README and docs/*.md still work as written.
 
   check_docs.py ROOT PATHLET [--only links,setup,commands,length]
 

@@ -6,6 +6,7 @@
 #include "engine_test_util.hpp"
 
 #include "gl_context.hpp"
+#include "graph/hook_params.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -63,8 +64,8 @@ struct ByHand {
     GLuint vao = 0;
     glm::ivec2 size;
     ByHand(const Executor& e, Runtime& rt, int n, glm::ivec2 sz) : size(sz) {
-        pattern = ShaderProgram::from_files({"fullscreen.vert", "gradient.frag"}, e.shader_dirs_for(*rt.registry.find("fullscreen")));
-        blur = ShaderProgram::from_files({"fullscreen.vert", "blur.frag"}, e.shader_dirs_for(*rt.registry.find("blur")));
+        pattern = ShaderProgram::from_files({"fullscreen.vert", "gradient.frag"}, shader_search_path(*rt.registry.find("fullscreen"), {}));
+        blur = ShaderProgram::from_files({"fullscreen.vert", "blur.frag"}, shader_search_path(*rt.registry.find("blur"), {}));
         tex.resize(size_t(2 * n));
         fbo.resize(tex.size());
         glCreateTextures(GL_TEXTURE_2D, GLsizei(tex.size()), tex.data());

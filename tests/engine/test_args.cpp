@@ -147,5 +147,5 @@ TEST(Args, TimeRangesAndTimingBackendsConvertWithTheirOwnMessages) {
     EXPECT_EQ(t.times(), (std::vector<double>{1.0, 1.5, 2.0}));
     EXPECT_EQ(tb, TimingBackend::CpuFinish);
     EXPECT_EQ(usage_error(a, {"--time", "5:1"}), "--time '5:1': END is before START");
-    EXPECT_EQ(usage_error(a, {"--timing", "fast"}), "--timing expects auto, gpu or finish, got 'fast'");
+    EXPECT_EQ(usage_error(a, {"--timing", "fast"}), "--timing expects auto, gpu, finish or cpu, got 'fast'");
 }

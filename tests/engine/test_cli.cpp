@@ -369,7 +369,7 @@ TEST(Cli, MalformedOptionValuesAreUsageErrorsNamingTheOption) {
         {"view --time x" + data, "--time expects a number, got 'x'"},  // was "error: stod"
         {"render --warmup 2.5 --no-images" + data, "--warmup expects an integer, got '2.5'"},
         {"render --orbit fast --no-images" + data, "--orbit expects a number, got 'fast'"},
-        {"render --timing fastest --no-images" + data, "--timing expects auto, gpu or finish, got 'fastest'"},
+        {"render --timing fastest --no-images" + data, "--timing expects auto, gpu, finish or cpu, got 'fastest'"},
         {"bench isl --frames many" + data, "--frames expects an integer, got 'many'"},
         {"bench isl --threshold 0.1x --compare x.json" + data, "--threshold expects a number, got '0.1x'"},
         {"trace f.vtk -o f.vtp --step 1/4", "--step expects a number, got '1/4'"},
@@ -387,4 +387,29 @@ TEST(Cli, MalformedOptionValuesAreUsageErrorsNamingTheOption) {
         EXPECT_NE(r.err.find("--help"), std::string::npos) << "points at the help:\n" << r.err;
         EXPECT_EQ(r.err.find("stod"), std::string::npos) << r.err;
     }
+}
+
+// Passes or parameters that must agree and do not: the graph is refused when it compiles, before
+// any GL or frame, naming both (a graph error: exit 1, as every graph error). MBOIT's
+// accumulation reading trigonometric moments from power moments; opacity_resolve's
+// clamp(x, adapt_min, adapt_max), undefined in GLSL for adapt_min > adapt_max.
+TEST(Cli, ValuesThatMustAgreeAndDoNotAreRefusedNamingBoth) {
+    const fs::path out = fs::path(PATHLET_TEST_BINARY_DIR) / "cli_disagree_out";
+    fs::remove_all(out);
+    const std::string common = " --phantom small --time 2 --size 32x18 --out " + out.string();
+    CliRun r = pathlet_cli("render variant2_mboit8 --set accum.moment_form=trig4" + common);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("pass 'accum' (mboit_accum) has moment_form = trig4 but pass 'moments' (mboit_moments)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("moment_form = power8"), std::string::npos) << r.err;
+    r = pathlet_cli("render variant2_mboit8 --set moments.moment_form=power4" + common);
+    EXPECT_EQ(r.code, 1) << "accum at power8 would read moments_high nobody wrote\n" << r.err;
+    r = pathlet_cli("render variant4_opacity --set opacity_resolve.adapt_min=8" + common);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("adapt_min = 8 is above adapt_max = 4"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out) && !fs::is_empty(out)) << "no frame before the graph is known good";
+    // Agreeing values render (the graph variable feeds both passes).
+    r = pathlet_cli("render variant2_mboit8 --set moments=trig4 --no-images --quiet --phantom small --time 2 --size 32x18");
+    EXPECT_EQ(r.code, 0) << r.err;
 }

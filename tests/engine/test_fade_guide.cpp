@@ -230,3 +230,38 @@ TEST(FadeGuide, AHookPathIsTheUsersOnTheCommandLineOnly) {
     EXPECT_NE(exp.err.find("a hook a graph names is a file name"), std::string::npos) << exp.err;
     EXPECT_FALSE(fs::exists(d + "/exp_out/results.json")) << "nothing run, nothing written";
 }
+
+TEST(FadeGuide, AHookAsTheGraphVariablesDefaultBringsItsOwnParameters) {
+    const std::string d = fade_dir();
+    write(d + "/pulse_fade.glsl",
+          "uniform float u_pulse_rate;  // @param 2 [0.1, 10] \"pulses per second\"\n"
+          "vec4 line_color_hook(vec4 rgba, LinePoint p) {\n"
+          "    return vec4(rgba.rgb, rgba.a * (0.55 + 0.45 * sin(6.2831853 * u_pulse_rate * p.time)));\n}\n");
+    // The hook as the default of variant 2's variable, its own parameter set on the pass.
+    write(d + "/pulse_v2.json", R"({"extends": "variant2_oit", "variables": {"color_hook": {"default": "pulse_fade.glsl"}},
+ "passes": [{"name": "fill_list", "params": {"pulse_rate": 3}}]})");
+    const Rendered ext = render("pulse_v2.json", "pulse_ext");
+    ASSERT_EQ(ext.run.code, 0) << ext.run.err;
+    EXPECT_NE(ext.run.err.find("pulse_v2.json: pass 'fill_list': color_hook 'pulse_fade.glsl' replaces "
+                               "'fade_opacity.frag', so the parameters set for the replaced hook are dropped: head_fade, "
+                               "tail_fade"),
+              std::string::npos)
+        << ext.run.err;
+    // The same on the command line, and as one value: the file with its parameters.
+    const Rendered set = render("variant2_oit --set color_hook=pulse_fade.glsl --set fill_list.pulse_rate=3", "pulse_set");
+    ASSERT_EQ(set.run.code, 0) << set.run.err;
+    EXPECT_EQ(ext.image.pixels, set.image.pixels);
+    write(d + "/pulse_obj.json", R"({"extends": "variant2_oit", "passes": [{"name": "fill_list",
+ "params": {"color_hook": {"file": "pulse_fade.glsl", "pulse_rate": 3}}}]})");
+    const Rendered obj = render("pulse_obj.json", "pulse_obj");
+    ASSERT_EQ(obj.run.code, 0) << obj.run.err;
+    EXPECT_EQ(obj.image.pixels, ext.image.pixels);
+    // The hook's own parameter reaches it.
+    const Rendered slow = render("pulse_v2.json --set fill_list.pulse_rate=0.5", "pulse_slow");
+    ASSERT_EQ(slow.run.code, 0) << slow.run.err;
+    EXPECT_NE(slow.image.pixels, ext.image.pixels);
+    // A set after the swap is read against the new hook: the end fade's parameter is no more.
+    const Rendered stale = render("pulse_v2.json --set fill_list.tail_fade=0.3", "pulse_stale");
+    EXPECT_EQ(stale.run.code, 2) << stale.run.err;
+    EXPECT_NE(stale.run.err.find("unknown parameter 'tail_fade'"), std::string::npos) << stale.run.err;
+}

@@ -238,3 +238,22 @@ TEST_F(Security, AnEmptyDataSetIsAnErrorNamingTheFileAndTheRepair) {
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("lines:"), std::string::npos) << "info still shows the numbers:\n" << r.out;
 }
+
+// A downloaded graph named "../escape" must not write beside the output folder through {graph}
+// (render), quality --out or the output-folder record: every command refuses it by name (a graph
+// error, exit 1), and nothing appears outside --out.
+TEST_F(Security, AGraphNameThatClimbsOutOfTheOutputFolderIsRefused) {
+    const fs::path g = root / "escape.json";
+    std::ofstream(g) << R"({"version": 1, "extends": "variant2_exact", "name": "../escape"})";
+    const fs::path out = root / "outdir" / "o";
+    fs::create_directories(out);
+    for (const std::string& args :
+         {"render " + g.string() + " --out " + out.string() + kData,
+          "quality " + g.string() + " --reference variant2_exact --out " + out.string() + kData}) {
+        CliRun r = run(args);
+        EXPECT_EQ(r.code, 1) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find("/name: graph name '../escape' must not contain '/'"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(root / "outdir" / "escape")) << args;
+        EXPECT_TRUE(fs::is_empty(out)) << args << ": nothing written for a refused graph";
+    }
+}

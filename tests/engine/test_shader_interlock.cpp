@@ -74,7 +74,7 @@ TEST(ShaderInterlock, AnInterlockedFragmentStageIsOneObjectWithItsHookAppended) 
     d.write("hook.frag", kHook);
     d.write("locked.frag", main_frag(true));
     std::string error;
-    const auto files = dumped(d, {"probe.vert", "locked.frag", "frag:hook.frag"}, &error);
+    const auto files = dumped(d, {"probe.vert", "locked.frag", "hook.frag"}, &error);
     ASSERT_EQ(files.size(), 2u) << "expected the vertex stage and one fragment object";
     ASSERT_TRUE(files.count("locked.frag+hook.frag")) << "the fragment object is the one that declares the interlock";
     const std::string& frag = files.at("locked.frag+hook.frag");
@@ -95,7 +95,7 @@ TEST(ShaderInterlock, WithoutAnInterlockTheHookStaysItsOwnObject) {
     d.write("hook.frag", kHook);
     d.write("free.frag", main_frag(false));
     std::string error;
-    const auto files = dumped(d, {"probe.vert", "free.frag", "frag:hook.frag"}, &error);
+    const auto files = dumped(d, {"probe.vert", "free.frag", "hook.frag"}, &error);
     EXPECT_EQ(error, "");  // links on every driver
     ASSERT_EQ(files.size(), 3u);
     EXPECT_EQ(count(files.at("free.frag"), "HOOK_BODY"), 0u);

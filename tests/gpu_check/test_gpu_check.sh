@@ -50,7 +50,7 @@ grep -q '^renderer: llvmpipe' "$R/summary.txt" || fail "the summary does not nam
 for g in variant1_lineao variant1_vao variant1_stable; do
   grep -q ' \* ' "$R/compute_$g.txt" || fail "compute_$g.txt has no fragment/compute row"
 done
-# Issue 42's table: every technique llvmpipe runs, against the exact reference, and exact against peeling.
+# The transparency table: every technique llvmpipe runs, against the exact reference, and exact against peeling.
 for t in exact WBOIT MBOIT; do
   grep -Eq "^\| $t \| window=1 " "$R/transparency.txt" || fail "transparency.txt has no $t row for the 1 s window"
 done

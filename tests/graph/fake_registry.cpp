@@ -62,6 +62,22 @@ PassRegistry make() {
             .input_texture("a", "any", "a", {.optional = true})
             .input_texture("b", "any", "b", {.optional = true})
             .output_texture("dst", "rgba16f", "mixed"));
+    // Values that must agree (graph_agree.cpp): a range's two ends, and a form a reader
+    // shares with what wrote its input, through a pass in between.
+    add(PassTypeBuilder("ranged", "a range of two parameters")
+            .param_float("lo", 1.0, -1.0, 100.0, "lower end; <= 0: automatic", {.at_most = "hi", .automatic_at_or_below = 0.0})
+            .param_float("hi", 2.0, -1.0, 100.0, "upper end; <= 0: automatic")
+            .output_texture("dst", "rgba8", "out"));
+    add(PassTypeBuilder("former", "writes in a form")
+            .param_enum("form", "a", {"a", "b"}, "the form")
+            .param_float("width", 1.0, 0.0, 10.0, "a width")
+            .output_texture("dst", "rgba16f", "written in `form`"));
+    add(PassTypeBuilder("reader", "reads in a form")
+            .param_enum("form", "a", {"a", "b"}, "must be the writer's")
+            .param_float("width", 1.0, 0.0, 10.0, "must be the writer's")
+            .param_float("gain", 1.0, 0.0, 10.0, "its own")
+            .input_texture("src", "any", "the former's output, maybe through others", {.same_params = {"*"}})
+            .output_texture("dst", "rgba8", "read"));
     return reg;
 }
 

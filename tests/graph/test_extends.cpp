@@ -186,3 +186,106 @@ TEST(Overrides, SetPassTypeReplacesTheType) {
     EXPECT_TRUE(has_problem(d, "/passes/0/type", "unknown pass type 'blurr'")) << all(d);
     EXPECT_NE(d.back().message.find("did you mean 'blur'"), std::string::npos) << all(d);
 }
+
+// "extends" as a list: each later base merges over the ones before it, then the file over all.
+TEST(Extends, ListedBasesMergeInOrderThenTheFile) {
+    write("base.json", kBase);
+    write("part.json", R"({"variables": {"radius": {"default": 1}},
+      "passes": [{"name": "ao", "params": {"samples": 12, "mode": "sphere"}},
+                 {"name": "soft", "type": "blur", "inputs": {"src": "ao"}}]})");
+    const std::string path = write("listed.json", R"({"extends": ["base.json", "part.json"],
+      "passes": [{"name": "ao", "params": {"samples": 20}}]})");
+    GraphFile g = parse_file(path);
+    ASSERT_EQ(g.passes.size(), 5u);
+    EXPECT_EQ(g.passes[4].name, "soft");                  // the later base's new pass after the first's
+    EXPECT_EQ(g.passes[1].params["samples"], 20);         // the file over both
+    EXPECT_EQ(g.passes[1].params["mode"], "sphere");      // the later base over the first
+    EXPECT_EQ(g.passes[1].params["radius"], "$radius");   // the first base's
+    EXPECT_EQ(g.variables[1].value, 1.0);
+    ASSERT_EQ(g.extends.size(), 2u);
+    EXPECT_NE(g.extends[1].find("part.json"), std::string::npos);
+    EXPECT_TRUE(file_problems(path).empty()) << all(file_problems(path));
+
+    auto d = file_problems(write("listed_bad.json", R"({"extends": ["base.json", 3]})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d[0].pointer, "/extends/1");
+    EXPECT_NE(d[0].message.find("extends must name a base graph"), std::string::npos) << d[0].str();
+    d = file_problems(write("listed_empty.json", R"({"extends": []})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d[0].pointer, "/extends");
+    d = file_problems(write("listed_missing.json", R"({"extends": ["base.json", "sub/nothing.json"]})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d[0].pointer, "/extends/1");
+    EXPECT_NE(d[0].message.find("base graph 'sub/nothing.json' not found"), std::string::npos) << d[0].str();
+}
+
+// Shipped bases (graphs/base/) are found by name from anywhere, and named when one is mistyped.
+TEST(Extends, AShippedBaseIsFoundByName) {
+    json merged = expanded_graph_json(write("on_lines.json", R"({"extends": "base/lines"})"));
+    ASSERT_TRUE(merged.contains("passes"));
+    EXPECT_EQ(merged["passes"][0]["name"], "wall");
+    EXPECT_TRUE(merged["variables"].contains("window"));
+    auto d = file_problems(write("base_typo.json", R"({"extends": "base/line"})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_NE(d[0].message.find("unknown base graph 'base/line'"), std::string::npos) << d[0].str();
+    EXPECT_NE(d[0].message.find("did you mean 'base/lines'"), std::string::npos) << d[0].str();
+    EXPECT_NE(d[0].message.find("shipped bases: "), std::string::npos) << d[0].str();
+    d = file_problems(write("base_up.json", R"({"extends": "base/../variant2_oit"})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_NE(d[0].message.find("a .json file or the name of a shipped graph"), std::string::npos) << d[0].str();
+}
+
+const char* kSetBase = R"({
+  "version": 1,
+  "variables": {"radius": {"type": "float", "default": 0.5, "min": 0, "max": 4}},
+  "param_sets": {"common": {"radius": "$radius", "samples": 8}},
+  "resources": {"ao": {"format": "r8"}},
+  "passes": [
+    {"name": "g", "type": "gbuffer"},
+    {"name": "ao", "type": "ssao", "param_set": "common",
+     "inputs": {"depth": "g.depth", "normal": "g.normal"}, "outputs": {"ao": "ao"}},
+    {"name": "light", "type": "lighting",
+     "inputs": {"depth": "g.depth", "normal": "g.normal", "albedo": "g.albedo", "ao": "ao"}}
+  ],
+  "outputs": [{"resource": "light.color"}]
+})";
+
+// A param set fills the passes that name it, their own params over it, in the merged graph:
+// an extending file's change to the set reaches the base's passes too.
+TEST(Extends, ParamSetsFillThePassesThatNameThem) {
+    write("set_base.json", kSetBase);
+    GraphFile plain = parse_file(dir() + "/set_base.json");
+    EXPECT_EQ(plain.passes[1].params, json({{"radius", "$radius"}, {"samples", 8}}));
+    const std::string path = write("set_top.json", R"({"extends": "set_base.json",
+      "param_sets": {"common": {"samples": 16}},
+      "passes": [{"name": "ao2", "type": "ssao", "param_set": "common", "params": {"radius": null, "mode": "sphere"},
+                  "inputs": {"depth": "g.depth", "normal": "g.normal"}}]})");
+    GraphFile g = parse_file(path);
+    EXPECT_EQ(g.passes[1].params, json({{"radius", "$radius"}, {"samples", 16}}));
+    EXPECT_EQ(g.passes[3].params, json({{"mode", "sphere"}, {"samples", 16}}));  // null leaves the set's radius out
+    json merged = expanded_graph_json(path);
+    EXPECT_FALSE(merged.contains("param_sets"));
+    for (const auto& p : merged["passes"]) EXPECT_FALSE(p.contains("param_set")) << p.dump();
+    EXPECT_TRUE(file_problems(path).empty()) << all(file_problems(path));
+}
+
+TEST(Extends, ParamSetMistakesAreNamedWithTheirPlace) {
+    write("set_base.json", kSetBase);
+    auto d = file_problems(write("set_typo.json", R"({"extends": "set_base.json",
+      "passes": [{"name": "ao", "param_set": "comon"}]})"));
+    ASSERT_EQ(d.size(), 1u) << all(d);
+    EXPECT_EQ(d[0].pointer, "/passes/1/param_set");
+    EXPECT_NE(d[0].str().find("set_typo.json:/passes/1/param_set: unknown param set 'comon'"), std::string::npos) << d[0].str();
+    EXPECT_NE(d[0].message.find("did you mean 'common'"), std::string::npos) << d[0].str();
+    d = file_problems(write("set_none.json", R"({"version": 1, "passes": [{"name": "g", "type": "gbuffer", "param_set": "lines"}],
+      "outputs": [{"resource": "g.albedo"}]})"));
+    ASSERT_EQ(d.size(), 1u) << all(d);
+    EXPECT_NE(d[0].message.find("the graph's param sets: none"), std::string::npos) << d[0].str();
+    d = file_problems(write("set_list.json", R"({"extends": "set_base.json", "param_sets": ["common"]})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d[0].pointer, "/param_sets");
+    d = file_problems(write("set_number.json", R"({"extends": "set_base.json", "param_sets": {"more": 3}})"));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d[0].pointer, "/param_sets/more");
+    EXPECT_NE(d[0].message.find("a param set is an object of parameters"), std::string::npos) << d[0].str();
+}

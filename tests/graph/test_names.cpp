@@ -49,6 +49,29 @@ TEST(Names, AGraphWithoutANameIsNamedAfterItsFileNotItsBase) {
     EXPECT_FALSE(expanded_graph_json(fade).contains("name"));
 }
 
+// A graph's name names its folder in output paths ({graph}, quality --out, the output-folder
+// record): a downloaded graph must not reach outside them through it.
+TEST(Names, AGraphNameThatCouldNameAnotherFolderIsAnErrorAtItsPlace) {
+    const std::string control = std::string("bell") + char(7);
+    for (const std::string& bad : {std::string("../escape"), std::string("a/b"), std::string(".."),
+                                   std::string("x\\y"), control}) {
+        const std::string path = write("bad_name.json", "{\"name\": " + nlohmann::json(bad).dump() +
+                                                            ", \"passes\": [], \"outputs\": []}");
+        try {
+            parse_graph_file(path);
+            ADD_FAILURE() << "graph name '" << bad << "' accepted";
+        } catch (const GraphError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find(path + ":/name: graph name"), std::string::npos) << m;
+        }
+    }
+    // A file name standing in for a missing "name" is held to the same rule.
+    const std::string dots = write("...json", R"({"passes": [], "outputs": []})");
+    EXPECT_THROW(parse_graph_file(dots), GraphError) << "a file '...json' would be named '..'";
+    // Dots inside a name are fine, and so is every shipped graph's.
+    EXPECT_EQ(parse_graph_file(write("dotted.json", R"({"name": "fade.v2", "passes": [], "outputs": []})")).name, "fade.v2");
+}
+
 TEST(Names, AnUnknownGraphIsOneLineWithTheClosestName) {
     try {
         find_graph_file("variant1_lineoa");

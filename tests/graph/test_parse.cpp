@@ -1,5 +1,5 @@
 #include "fake_registry.hpp"
-#include "io/limits.hpp"
+#include "util/input_limits.hpp"
 #include "util/text.hpp"
 #include <pathlet/text.hpp>
 

@@ -289,3 +289,44 @@ TEST(Validate, EveryErrorIsReportedAtOnce) {
         EXPECT_NE(what.find("test.json:/outputs/1/resource: "), std::string::npos) << what;
     }
 }
+
+// Values that must agree are checked when the graph compiles, each error naming both sides.
+namespace {
+std::string agreeing(const std::string& former_params, const std::string& reader_params, bool through_blur) {
+    const std::string src = through_blur ? "blur.dst" : "former.dst";
+    return R"({"name": "agree", "passes": [
+        {"name": "former", "type": "former", "params": )" + former_params + R"(},
+        {"name": "blur", "type": "blur", "inputs": {"src": "former.dst"}},
+        {"name": "reader", "type": "reader", "params": )" + reader_params + R"(, "inputs": {"src": ")" + src + R"("}},
+        {"name": "range", "type": "ranged", "params": {"lo": 3, "hi": 5}}],
+      "outputs": ["reader.dst", "range.dst"]})";
+}
+}  // namespace
+
+TEST(Validate, AParameterAboveTheOtherEndOfItsRangeNamesBoth) {
+    auto d = problems(with(agreeing("{}", "{}", false), R"("lo": 3, "hi": 5)", R"("lo": 8, "hi": 5)"));
+    EXPECT_TRUE(has_problem(d, "/passes/3/params/lo", "pass 'range': lo = 8 is above hi = 5; lo must not exceed hi"));
+    EXPECT_EQ(d.size(), 1u) << all(d);
+    // The default of the other end counts; an automatic value (<= 0 here) is not compared.
+    d = problems(with(agreeing("{}", "{}", false), R"("lo": 3, "hi": 5)", R"("lo": 3)"));
+    EXPECT_TRUE(has_problem(d, "/passes/3/params/lo", "lo = 3 is above hi = 2")) << "hi's default is 2";
+    for (const char* fine : {R"("lo": 0, "hi": 5)", R"("lo": 8, "hi": -1)", R"("lo": 5, "hi": 5)"}) {
+        d = problems(with(agreeing("{}", "{}", false), R"("lo": 3, "hi": 5)", fine));
+        EXPECT_TRUE(d.empty()) << fine << "\n" << all(d);
+    }
+}
+
+TEST(Validate, APassThatMustAgreeWithWhatWroteItsInputNamesBothPasses) {
+    for (bool through : {false, true}) {
+        auto d = problems(agreeing(R"({"form": "b"})", R"({"form": "a", "gain": 3})", through));
+        EXPECT_TRUE(has_problem(d, "/passes/2/params/form",
+                                "pass 'reader' (reader) has form = a but pass 'former' (former), which its input 'src' "
+                                "comes from, has form = b"))
+            << (through ? "through blur" : "directly");
+        EXPECT_EQ(d.size(), 1u) << all(d);  // gain is the reader's own; width agrees (both default)
+        d = problems(agreeing(R"({"width": 2})", "{}", through));
+        EXPECT_TRUE(has_problem(d, "/passes/2", "has width = 1 but pass 'former' (former)")) << "a default counts too";
+        d = problems(agreeing(R"({"form": "b", "width": 3})", R"({"form": "b", "width": 3})", through));
+        EXPECT_TRUE(d.empty()) << all(d);
+    }
+}

@@ -2,6 +2,7 @@
 // (pathlet/gpu_fence.hpp): copies made without polling stay in flight, nothing is handed out
 // before its fence may have signalled, and then every copy is, in order, with its tag.
 #include "frame_capture.hpp"
+#include "renderer.hpp"
 #include "frames/readback_ring.hpp"
 #include "profiler/profiler.hpp"
 
@@ -10,7 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pathlet {
@@ -205,6 +209,81 @@ TEST(ReadbackRing, PollTakesWhatIsReadyOnceTheLatencyHasPassed) {
     EXPECT_EQ(done, (std::vector<int>{0, 1, 2, 3, 4, 5}));
 }
 
+
+// The viewer's resizes: a copy size no longer used leaves no buffers behind. The window grows
+// five times (a copy of each size for a few frames): the ring holds the last size's buffers
+// alone, never a set per size ever copied (a smaller size's buffer fits no larger copy).
+TEST(ReadbackRing, BuffersOfASizeNoLongerCopiedAreFreed) {
+    Latency latency(0);
+    test_runtime();
+    const int widths[5] = {4, 8, 16, 32, 64};
+    GLuint tex[5] = {0, 0, 0, 0, 0};
+    glCreateTextures(GL_TEXTURE_2D, 5, tex);
+    for (int i = 0; i < 5; ++i) glTextureStorage2D(tex[i], 1, GL_RGBA8, widths[i], 2);
+    const size_t depth = 2;
+    ReadbackRing ring(depth);
+    size_t handed = 0, most = 0;
+    for (int i = 0; i < 5; ++i)
+        for (int f = 0; f < 4; ++f) {
+            advance_gpu_frame();
+            ring.copy(tex[i], widths[i], 2, GL_RGBA, GL_UNSIGNED_BYTE, 4, [&](PackedPixels&&) { ++handed; }, "test");
+            ring.end_frame();
+            ring.poll();
+            most = std::max(most, ring.buffers());
+        }
+    ring.drain();
+    EXPECT_EQ(handed, 20u) << "every copy handed over";
+    EXPECT_LE(most, 2 * (depth + 1)) << "buffers held at any time";
+    EXPECT_LE(ring.buffers(), depth + 1) << "only the size still copied keeps buffers";
+    glDeleteTextures(5, tex);
+}
+
+// A GPU that never signals: a blocking wait gives up after the limit, naming the frame its fence
+// was issued in; inside a pass the executor adds the pass's name.
+TEST(GpuFence, AWaitOnAGpuThatNeverSignalsGivesUpNamingTheFrameAndThePass) {
+    struct Hung {
+        Hung() {
+            set_gpu_wait_limit(0.3);
+            set_simulated_gpu_hang(true);
+        }
+        ~Hung() {
+            set_simulated_gpu_hang(false);
+            set_gpu_wait_limit(0);
+        }
+    };
+    test_runtime();
+    {
+        GpuFence f = GpuFence::insert();
+        const uint64_t issued = f.frame();
+        Hung hung;
+        try {
+            f.wait();
+            ADD_FAILURE() << "a wait on a GPU that never signals returned";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("frame " + std::to_string(issued)), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("PATHLET_GPU_WAIT_LIMIT"), std::string::npos) << e.what();
+        }
+    }
+    // fill_list reads its node count back without waiting after the first frame (which waits);
+    // the end of the run waits for the second frame's. Two frames: the frames in flight never
+    // wait before it.
+    RenderOptions opt;
+    opt.graph_path = std::string(PATHLET_SOURCE_DIR) + "/graphs/variant2_oit.json";
+    opt.size = {64, 36};
+    opt.time = {2.0, 2.04, 0.04};
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    Hung hung;
+    try {
+        render(test_runtime(), small_phantom_scene(), opt);
+        ADD_FAILURE() << "a render on a GPU that never signals finished";
+    } catch (const std::exception& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("pass 'fill_list'"), std::string::npos) << m;
+        EXPECT_NE(m.find("did not finish the work of frame"), std::string::npos) << m;
+    }
+}
 
 // The viewer's timing: ready timer queries are collected without waiting, the rest carry over.
 TEST(Profiler, CollectReadyNeverWaitsAndFramesInFlightCarryOver) {

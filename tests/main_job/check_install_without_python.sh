@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # After the main job (scripts/main.sh builds pathlet_runtime, not the Python module) the
-# README's `cmake --install build --prefix DIR` must work (issue 41): the Python rules install
+# README's `cmake --install build --prefix DIR` must work: the Python rules install
 # the package where the module was built and skip it, saying so, where it was not. The module
 # of this (fully built) tree is hidden by pointing the generated Python rules at a file that is
 # not there (the whole install with the module: bundle.install_prefix).

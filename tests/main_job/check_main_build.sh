@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/main.sh builds only what its render runs (issue 35): its build step, run on this built
+# scripts/main.sh builds only what its render runs: its build step, run on this built
 # tree without configuring, names in its log (BUILD/build.log, "Built target X") the command,
 # the plugins and the share folder, and nothing that is not on their allow-list (no test,
 # benchmark, fuzzer, test fixture or Python module).
@@ -17,7 +17,7 @@ echo "main.sh builds: $(echo $built)"
 # An allow-list: the engine's runtime targets and each shipped pass (passes/*/CMakeLists.txt's
 # pathlet_add_pass, not NO_INSTALL) with its shaders. Anything else (a test, benchmark, fuzzer,
 # fixture plugin, the Python module, a target named tomorrow) is a failure.
-allowed="pathlet pathlet_cli pathlet_share pathlet_runtime pathlet_data pathlet_sdk_fingerprint pathlet_app_support
+allowed="pathlet pathlet_cli pathlet_share pathlet_runtime pathlet_base pathlet_data pathlet_sdk_fingerprint pathlet_app_support
   pathlet_bench pathlet_quality"
 passes=""
 for f in "$SRC"/passes/*/CMakeLists.txt; do

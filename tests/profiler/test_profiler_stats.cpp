@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 
 namespace pathlet {
 namespace {
@@ -38,10 +40,12 @@ TEST(ComputeStats, SingleAndEmpty) {
     EXPECT_DOUBLE_EQ(none.median, 0);
 }
 
-TEST(TimingBackend, ParsesTheThreeWords) {
+TEST(TimingBackend, ParsesTheFourWords) {
     EXPECT_EQ(parse_timing_backend("auto"), TimingBackend::Auto);
     EXPECT_EQ(parse_timing_backend("gpu"), TimingBackend::GlTimestamp);
     EXPECT_EQ(parse_timing_backend("finish"), TimingBackend::CpuFinish);
+    EXPECT_EQ(parse_timing_backend("cpu"), TimingBackend::CpuTime);
+    EXPECT_STREQ(to_string(TimingBackend::CpuTime), "cpu");
     try {
         parse_timing_backend("fast");
         FAIL() << "no exception";
@@ -68,6 +72,33 @@ TEST(TimingBackend, GpuWithoutTimestampsFallsBackAndSaysSo) {
     p.init(TimingBackend::Auto, "NVIDIA H100 PCIe/PCIe/SSE2");
     EXPECT_EQ(p.backend(), TimingBackend::CpuFinish);
     EXPECT_NE(p.backend_description().find("unavailable"), std::string::npos);
+}
+
+// A pass that sleeps 120 ms and one that works: the process CPU time bills the work and not the
+// sleep (a busy machine's waiting), the glFinish-bracketed clock both; the recording time stays
+// the wall clock under either.
+TEST(TimingBackend, CpuTimeCountsWorkNotWaiting) {
+    auto run = [](TimingBackend b) {
+        Profiler p;
+        p.set_warmup_frames(0);
+        p.init(b, "llvmpipe");
+        p.begin_frame(0);
+        p.begin_pass("sleep");
+        std::this_thread::sleep_for(std::chrono::milliseconds(120));
+        p.end_pass();
+        p.begin_pass("work");
+        volatile double x = 0;
+        for (int i = 0; i < 30'000'000; ++i) x = x + 1e-9 * i;
+        p.end_pass();
+        p.end_frame();
+        return p.passes();
+    };
+    const auto cpu = run(TimingBackend::CpuTime), wall = run(TimingBackend::CpuFinish);
+    ASSERT_EQ(cpu.size(), 2u);
+    EXPECT_LT(cpu[0].gpu_ms.median, 10.0) << "a sleep costs no CPU time";
+    EXPECT_GT(cpu[1].gpu_ms.median, 2.0 * cpu[0].gpu_ms.median) << "the work does";
+    EXPECT_GE(cpu[0].cpu_ms.median, 119.0) << "the recording time is the wall clock";
+    EXPECT_GE(wall[0].gpu_ms.median, 119.0) << "finish: the wall clock";
 }
 
 TEST(Profiler, ExcludesWarmupFramesFromStatistics) {

@@ -1,5 +1,5 @@
 // Progress off a terminal (CI logs): plain lines, no '\r', no colour, on stderr only.
-#include "progress.hpp"
+#include "common/progress.hpp"
 
 #include "text_lines.hpp"
 

@@ -251,7 +251,7 @@ def test_transparency_numbers_are_the_commands(pathlet, cli, scene):
 
 
 def test_quality_against_a_reference_is_the_commands(pathlet, cli, scene, tmp_path):
-    # Issue 42: fidelity against a reference graph, the command's numbers; the graph's sets go to both.
+    # Fidelity against a reference graph, the command's numbers; the graph's sets go to both.
     args = ["--time", "2:2.08:0.04", "--size", "96x54", "--set", "overlay=false"]
     out = cli("quality", "variant2_oit", "--reference", "variant2_exact", *args, "--phantom", "small").stdout
     g = pathlet.Graph("variant2_oit").set(overlay=False)
@@ -342,7 +342,7 @@ print(pathlet.closed())
 
 def test_render_lists_the_frames_that_lost_fragments_as_the_command_does(pathlet, scene, capfd):
     # Node memory capped: every frame loses fragments, is returned anyway, and stderr's last line
-    # lists them as `pathlet render`'s does (issue 40).
+    # lists them as `pathlet render`'s does.
     g = pathlet.Graph("variant2_oit").set("fill_list.max_memory_mb=0.01", window=2)
     r = pathlet.render(g, scene, time="2:2.3:0.1", size=(96, 72))
     assert r.rgba.shape[0] == 4

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 
@@ -34,7 +35,8 @@ CliRun quality(const std::string& args) {
                                                                              {"share", "share over 8/255 "},
                                                                              {"flip", "flip "},
                                                                              {"flicker", "flicker vs reference "}})
-            if (s.rfind(prefix, 0) == 0) r.v[key] = std::stod(s.substr(prefix.size()));
+            if (s.rfind(prefix, 0) == 0 && s.compare(prefix.size(), 3, "n/a") != 0)
+                r.v[key] = std::stod(s.substr(prefix.size()));
         if (const size_t all = s.find("all pixels "); s.rfind("flip ", 0) == 0 && all != std::string::npos)
             r.v["flip_all"] = std::stod(s.substr(all + 11));
     }
@@ -114,4 +116,34 @@ TEST(QualityReference, BadUseIsAnErrorNamingIt) {
     r = quality("demo_blur --reference variant2_exact" + kCommon);
     EXPECT_NE(r.rc, 0) << r.out;
     EXPECT_NE(r.out.find("no coverage"), std::string::npos) << r.out;
+}
+
+// The coverage is searched past passes without "outputs": here the first pass (clear_list, its
+// outputs implicit resources) has none, and there is no wall; fill_list's coverage is found.
+TEST(QualityReference, AFirstPassWithoutOutputsDoesNotEndTheCoverageSearch) {
+    const fs::path g = fs::path(PATHLET_TEST_BINARY_DIR) / "quality_no_outputs_first.json";
+    std::ofstream(g) << R"({"version": 1, "name": "no_outputs_first",
+  "resources": {"nodes": {"kind": "buffer"}, "coverage": {"format": "depth24"}, "color": {"format": "rgba8"}},
+  "passes": [
+    {"name": "clear_list", "type": "clear_list"},
+    {"name": "fill_list", "type": "fill_list", "params": {"never_drop": true},
+     "inputs": {"heads": "clear_list.heads", "counter": "clear_list.counter"},
+     "outputs": {"nodes": "nodes", "coverage": "coverage"}},
+    {"name": "resolve", "type": "resolve_exact",
+     "inputs": {"heads": "clear_list.heads", "nodes": "nodes", "coverage": "coverage"}, "outputs": {"color": "color"}}],
+  "outputs": [{"resource": "color"}]})";
+    const CliRun r = quality(g.string() + " --reference variant2_exact --phantom small --size 160x90 --time 2");
+    ASSERT_EQ(r.rc, 0) << r.out;
+    EXPECT_NE(r.out.find("no_outputs_first vs variant2_exact"), std::string::npos) << r.out;
+    EXPECT_TRUE(r.v.count("ssim")) << r.out;
+}
+
+// Nothing to measure is no score: at 8x8 no 11x11 SSIM window lies inside the picture, so
+// ssim is n/a and the command fails (exit 2), never "ssim 1.00000" and PSNR infinity.
+TEST(QualityReference, NothingToMeasureIsNotAPerfectScore) {
+    const CliRun r = quality("variant2_wboit --reference variant2_exact --phantom small --size 8x8 --time 2");
+    EXPECT_EQ(r.rc, 2) << r.out;
+    EXPECT_NE(r.out.find("ssim n/a"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("ssim 1.0"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("psnr inf"), std::string::npos) << r.out;
 }

@@ -1,10 +1,16 @@
 // The synthetic aortic-arch phantom: sizes, bounds, time span, determinism, cache.
 #include "phantom/phantom.hpp"
+#include "util/cache_dir.hpp"
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
+#include <stdexcept>
 
 using namespace pathlet;
 
@@ -82,6 +88,56 @@ TEST(Phantom, CachePathAndReuse) {
     ASSERT_TRUE(loaded.mesh.has_value());
     EXPECT_EQ(loaded.mesh->index.size(), made.mesh->index.size());
     unsetenv("XDG_CACHE_HOME");
+}
+
+// The cache folder: a relative XDG_CACHE_HOME is ignored (the XDG spec), and without HOME the
+// folder is the user's own in the temporary directory (pathlet-cache-UID, 0700), refused when
+// what is there is a link or open to other users, never a shared predictable /tmp/pathlet-cache.
+TEST(Phantom, CacheFolderIsTheUsersOwnAndARelativeXdgCacheHomeIsIgnored) {
+    struct Env {  // sets a variable for the test, restores it after
+        std::string name;
+        std::optional<std::string> was;
+        Env(std::string n, const char* v) : name(std::move(n)) {
+            if (const char* w = std::getenv(name.c_str())) was = w;
+            if (v) setenv(name.c_str(), v, 1);
+            else unsetenv(name.c_str());
+        }
+        ~Env() {
+            if (was) setenv(name.c_str(), was->c_str(), 1);
+            else unsetenv(name.c_str());
+        }
+    };
+    namespace fs = std::filesystem;
+    const fs::path tmp = fs::path(PATHLET_TEST_BINARY_DIR) / "cache-dir-tmp";
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+    {
+        Env xdg("XDG_CACHE_HOME", "relative/cache"), home("HOME", tmp.c_str());
+        EXPECT_EQ(cache_dir(), (tmp / ".cache" / "pathlet").string()) << "a relative XDG_CACHE_HOME is ignored";
+    }
+    Env xdg("XDG_CACHE_HOME", nullptr), home("HOME", nullptr), tmpdir("TMPDIR", tmp.c_str());
+    const fs::path own = tmp / ("pathlet-cache-" + std::to_string(getuid()));
+    EXPECT_EQ(cache_dir(), own.string());
+    struct stat st {};
+    ASSERT_EQ(lstat(own.c_str(), &st), 0) << "made when missing";
+    EXPECT_TRUE(S_ISDIR(st.st_mode));
+    EXPECT_EQ(st.st_mode & 0777, 0700u);
+    EXPECT_EQ(cache_dir(), own.string()) << "and used again as it is";
+    auto refused = [&](const char* what) {
+        try {
+            cache_dir();
+            ADD_FAILURE() << what << ": used";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find(own.string()), std::string::npos) << e.what();
+        }
+    };
+    chmod(own.c_str(), 0777);
+    refused("a folder others may write");
+    fs::remove_all(own);
+    fs::create_directories(tmp / "elsewhere");
+    fs::create_directory_symlink(tmp / "elsewhere", own);
+    refused("a link planted where the folder goes");
+    fs::remove_all(tmp);
 }
 
 // The study phantom as generated (the first run) and as cached (every later run) is one data

@@ -3,7 +3,7 @@
 #include "calibration.hpp"
 #include "results.hpp"
 
-#include "cli/scene_args.hpp"
+#include "common/scene_source.hpp"
 
 #include "gl_context.hpp"
 #include "renderer.hpp"

@@ -57,7 +57,7 @@ void convert(const std::string& text, TimingBackend& out) {
     try {
         out = parse_timing_backend(text);
     } catch (const std::exception&) {
-        throw std::invalid_argument("expects auto, gpu or finish, got '" + text + "'");
+        throw std::invalid_argument("expects auto, gpu, finish or cpu, got '" + text + "'");
     }
 }
 void convert(const std::string& text, Shard& out) { out = parse_shard(text); }

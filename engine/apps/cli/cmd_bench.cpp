@@ -14,7 +14,7 @@
 #include "commands.hpp"
 #include "common_options.hpp"
 #include "graph_errors.hpp"
-#include "progress.hpp"
+#include "common/progress.hpp"
 #include "renderer.hpp"
 #include "util/atomic_file.hpp"
 #include "util/output_check.hpp"

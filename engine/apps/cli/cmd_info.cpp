@@ -2,7 +2,6 @@
 #include "commands.hpp"
 #include "common_options.hpp"
 #include "io/file_info.hpp"
-#include "scene_args.hpp"
 
 #include "build_info.hpp"
 #include "gl_context.hpp"

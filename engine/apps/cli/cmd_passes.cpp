@@ -16,7 +16,7 @@ namespace {
 // A type as a graph would see it with its default hooks: their @param uniforms included.
 std::shared_ptr<const PassTypeInfo> with_default_hooks(const PassTypeInfo& t) {
     try {
-        return instance_type(t, json::object(), {});
+        return instance_type_with(t);
     } catch (const HookError& e) {
         std::fprintf(stderr, "warning: %s: default hook: %s\n", t.type.c_str(), e.what());
         return {&t, [](const PassTypeInfo*) {}};
@@ -26,16 +26,16 @@ std::shared_ptr<const PassTypeInfo> with_default_hooks(const PassTypeInfo& t) {
 // The type with the hooks --set names (color_hook=FILE: a file of yours, relative to the current
 // folder, or a name on the shader path): the parameters those hooks declare, with their docs.
 std::shared_ptr<const PassTypeInfo> with_hooks(const PassTypeInfo& t, const std::vector<std::string>& sets) {
-    json params = json::object();
-    std::vector<std::string> chosen;  // the user's files, found by their paths
+    std::map<HookRole, std::string> names;
+    std::set<std::string> chosen;  // the user's files, found by their paths
     for (const auto& set : sets) {
         const auto eq = set.find('=');
         const std::string name = set.substr(0, eq), value = eq == std::string::npos ? "" : set.substr(eq + 1);
         const ParamDecl* d = t.param(name);
         std::vector<std::string> hooks;
         for (const auto& p : t.params)
-            if (!p.hook.empty()) hooks.push_back(p.name);
-        if (eq == std::string::npos || !d || d->hook.empty())
+            if (p.hook) hooks.push_back(p.name);
+        if (eq == std::string::npos || !d || !d->hook)
             throw UsageError("--set " + set + ": --describe takes a hook file, " +
                              (hooks.empty() ? std::string("and '") + t.type + "' has no hook parameters"
                                             : "as " + text::join(hooks, "=FILE or ") + "=FILE" +
@@ -45,12 +45,12 @@ std::shared_ptr<const PassTypeInfo> with_hooks(const PassTypeInfo& t, const std:
         if (value.find('/') != std::string::npos || std::filesystem::is_regular_file(value, ec)) {
             file = std::filesystem::absolute(value).lexically_normal().string();
             if (!std::filesystem::is_regular_file(file, ec)) throw InputError("--set " + set + ": no hook file " + file);
-            chosen.push_back(file);
+            chosen.insert(file);
         }
-        params[name] = file;
+        names[*d->hook] = file;
     }
     try {
-        return instance_type(t, params, chosen);
+        return instance_type_with(t, names, chosen);
     } catch (const HookError& e) {
         throw InputError(std::string(e.what()));
     }

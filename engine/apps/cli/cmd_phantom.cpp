@@ -1,7 +1,7 @@
 // pathlet phantom --preset study|small -o OUT: the synthetic aortic-arch data set.
 #include "commands.hpp"
 #include "data_outputs.hpp"
-#include "fraction_progress.hpp"
+#include "common/fraction_progress.hpp"
 #include "phantom/phantom.hpp"
 
 #include <cstdio>

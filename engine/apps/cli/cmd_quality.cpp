@@ -3,6 +3,7 @@
 // of the AO against a ray-traced AO of the same frame (Embree, tubes of the visible pathlets).
 // The measuring is quality/measure.cpp (shared with the Python module); this is the command.
 #include "commands.hpp"
+#include "graph_errors.hpp"
 #include "common_options.hpp"
 #include "executor.hpp"
 #include "image_io.hpp"
@@ -82,11 +83,22 @@ int run_reference(const quality::QualityOptions& q, const std::string& reference
     o.sets = rt.user_sets(q.sets);
     const Scene scene = data.load(true);
     if (q.time) check_time_in_data(*q.time, shown(*q.time), scene, allow_empty);
-    const quality::ReferenceResult r = quality::measure_against_reference(rt, scene, o);
+    quality::ReferenceResult r;
+    try {
+        r = quality::measure_against_reference(rt, scene, o);
+    } catch (const GraphError& e) {
+        return report_graph_error(e, rt);
+    }
     const quality::ImageMetrics& m = r.metrics;
     std::printf("%s vs %s: %zu frames %dx%d, t=%.2f..%.2f, %zu covered pixels (%.0f a frame)\n", r.graph.c_str(),
                 r.reference.c_str(), r.frames, o.size.x, o.size.y, r.first_time, r.last_time, m.pixels,
                 double(m.pixels) / double(std::max<size_t>(r.frames, 1)));
+    if (!m.ssim_measured()) {  // nothing to measure: no score, and not a success
+        std::printf("ssim n/a (no %dx%d window lies inside a %dx%d picture with a covered centre)\n",
+                    quality::kSsimWindow, quality::kSsimWindow, o.size.x, o.size.y);
+        std::fprintf(stderr, "error: nothing to measure: %zu covered pixels, no SSIM window\n", m.pixels);
+        return 2;
+    }
     std::printf("ssim %.5f\n", m.ssim);
     std::printf("psnr %.2f\n", m.psnr);
     std::printf("rmse %.5f\n", m.rmse);
@@ -95,6 +107,7 @@ int run_reference(const quality::QualityOptions& q, const std::string& reference
                 m.flip_all, o.ppd);
     std::printf("rms %.2f levels of 255, speckles %.4f %% (the reference's %.4f %%; ../shared/tools/aa_metric.py's figures)\n",
                 r.aa.rms, 100.0 * r.aa.speckle, 100.0 * r.reference_aa.speckle);
+    if (const std::string note = quality::incomplete_frames_note(r); !note.empty()) std::printf("note: %s\n", note.c_str());
     if (r.flicker)
         std::printf("flicker vs reference %.5f (own change %.5f, the reference's %.5f)\n", r.flicker->excess,
                     r.flicker->test_change, r.flicker->reference_change);

@@ -4,7 +4,7 @@
 #include "common_options.hpp"
 #include "graph_errors.hpp"
 #include "output_folders.hpp"
-#include "progress.hpp"
+#include "common/progress.hpp"
 #include "renderer.hpp"
 #include "util/atomic_file.hpp"
 #include "util/output_check.hpp"

@@ -1,7 +1,7 @@
 // pathlet trace FIELD -o OUT: dense pathlines (and optionally the wall) from a velocity volume.
 #include "commands.hpp"
 #include "data_outputs.hpp"
-#include "fraction_progress.hpp"
+#include "common/fraction_progress.hpp"
 #include "io/units.hpp"
 #include "trace/field_readers.hpp"
 #include "trace/marching_cubes.hpp"

@@ -1,7 +1,9 @@
 #include "common_options.hpp"
 
 #include "io/units.hpp"
+#include "renderer.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace pathlet::cli {
@@ -78,9 +80,25 @@ void declare_camera(Args& a, std::string& file) {
 }
 
 void declare_timing(Args& a, TimingBackend& timing) {
-    a.option("timing", timing, "auto|gpu|finish",
-             "pass timing: GL timestamp queries (gpu) or glFinish-bracketed CPU clock (finish); auto: finish on "
-             "llvmpipe, timestamps on a GPU");
+    a.option("timing", timing, "auto|gpu|finish|cpu",
+             "pass timing: GL timestamp queries (gpu), glFinish-bracketed CPU clock (finish) or process CPU time "
+             "(cpu: llvmpipe's work, steady on a busy machine; no measure of a GPU); auto: finish on llvmpipe, "
+             "timestamps on a GPU");
+}
+
+void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty) {
+    if (allow_empty || scene.lines.timeless) return;
+    const double t0 = scene.lines.time_min(), t1 = scene.lines.time_max();
+    const double slack = 1e-6 * std::max(1.0, t1 - t0);
+    const std::vector<double> times = t.times();
+    const double first = times.front(), last = times.back();
+    if (first >= t0 - slack && last <= t1 + slack) return;
+    char span[160];
+    std::snprintf(span, sizeof span, "%g..%g s", t0, t1);
+    const std::string what = times.size() == 1 ? "is outside" : "reaches outside";
+    throw InputError("--time " + given + " " + what + " the data's time span, " + span + " (" + scene.source +
+                     "): its frames would be empty; give a time within " + span +
+                     ", or --allow-empty-frames to render them anyway");
 }
 
 }  // namespace pathlet::cli

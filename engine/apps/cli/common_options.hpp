@@ -7,10 +7,10 @@
 
 #include <pathlet/scene.hpp>
 
+#include "common/scene_source.hpp"
 #include "io/pathline_io.hpp"
 #include "profiler/profiler.hpp"
 #include "runtime.hpp"
-#include "scene_args.hpp"
 
 #include <string>
 #include <vector>
@@ -48,10 +48,15 @@ struct SceneOptions {
     bool given() const { return !data.empty() || !mesh.empty() || phantom.given; }
     // What the options name (UsageError for a malformed --units or --time-step).
     SceneSource source() const;
-    // Loads it (scene_args.hpp's load_scene): a one-line summary, repair warnings on stderr, a
-    // DataError when no line is left to draw.
+    // Loads it (common/scene_source.hpp's load_scene): a one-line summary, repair warnings on
+    // stderr, a DataError when no line is left to draw.
     Scene load(bool quiet) const { return load_scene(source(), quiet); }
 };
+
+// A time the user gave that reaches outside the data's time span would render frames with
+// nothing in them: InputError (exit 2) naming what was given and the data's span, unless
+// `allow_empty` (--allow-empty-frames). Data without time takes any time.
+void check_time_in_data(const TimeRange& t, const std::string& given, const Scene& scene, bool allow_empty);
 
 
 // --set NAME=VALUE (repeatable): a graph variable or a pass parameter.
@@ -60,7 +65,7 @@ void declare_sets(Args& a, std::vector<std::string>& sets);
 void declare_size(Args& a, glm::ivec2& size, const std::string& what);
 // --camera FILE: a camera path (render --camera's format).
 void declare_camera(Args& a, std::string& file);
-// --timing auto|gpu|finish: how passes are timed.
+// --timing auto|gpu|finish|cpu: how passes are timed.
 void declare_timing(Args& a, TimingBackend& timing);
 
 }  // namespace pathlet::cli

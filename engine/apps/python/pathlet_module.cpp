@@ -1,6 +1,6 @@
 // _pathlet: the C++ side of `import pathlet`. Thin on purpose: data loading, graph overrides,
 // rendering, experiments and quality measures are the same functions the `pathlet` command
-// calls (scene_args, Runtime::load_graph/apply_overrides, render(), cli::bench::run_experiment,
+// calls (load_scene, Runtime::load_graph/apply_overrides, render(), cli::bench::run_experiment,
 // quality::measure_quality). What is here: NumPy in and out, errors as Python exceptions, and
 // the one GL thread (gl_thread.hpp). The friendly API is pathlet/__init__.py.
 #include "gl_thread.hpp"
@@ -9,7 +9,7 @@
 #include "bench/run_experiment.hpp"
 #include "bench/report.hpp"
 #include "build_info.hpp"
-#include "cli/scene_args.hpp"
+#include "common/scene_source.hpp"
 #include "executor.hpp"
 #include "formats.hpp"
 #include "graph/hook_params.hpp"
@@ -93,9 +93,9 @@ void translate(std::exception_ptr p) {
 
 // ---- scenes --------------------------------------------------------------------------------
 
-SceneRef load_scene_source(const cli::SceneSource& src) {
+SceneRef load_scene_source(const SceneSource& src) {
     py::gil_scoped_release nogil;  // CPU work (a phantom may be generated): other threads go on
-    return std::make_shared<Scene>(cli::load_scene(src, true));
+    return std::make_shared<Scene>(load_scene(src, true));
 }
 
 template <class T>
@@ -235,17 +235,8 @@ json describe_graph(Runtime& rt, const std::string& path, const std::vector<std:
             }
             return value;
         };
-        std::shared_ptr<const PassTypeInfo> type;  // with the parameters its hooks declare
-        if (const PassTypeInfo* t = rt.registry.find(p.type)) {
-            json hooks = json::object();
-            for (const auto& d : t->params)
-                if (!d.hook.empty()) hooks[d.name] = value_of(d, nullptr);
-            try {
-                type = instance_type(*t, hooks, g.dirs);
-            } catch (const HookError&) {  // named when the graph is compiled
-                type = std::shared_ptr<const PassTypeInfo>(t, [](const PassTypeInfo*) {});
-            }
-        }
+        // With the parameters its hooks declare (resolved when the graph loaded).
+        std::shared_ptr<const PassTypeInfo> type = p.instance_type;
         if (type)
             for (const auto& d : type->params) {
                 json x = decl_json(d);
@@ -428,7 +419,7 @@ py::object run_bench(const BenchArgs& a, const std::optional<SceneRef>& scene) {
     cli::bench::ExperimentHooks hooks;
     hooks.load_data = [&](size_t d) {
         if (scene) return Scene(**scene);
-        if (e.data.empty()) return cli::load_scene(cli::SceneSource{}, true);
+        if (e.data.empty()) return load_scene(SceneSource{}, true);
         return cli::bench::load_data_set(e.data[d]);
     };
     hooks.on_report = [&](const json& report, const cli::bench::RunDone*) {
@@ -537,6 +528,7 @@ py::dict run_reference(const std::string& graph, const std::vector<std::string>&
     for (const quality::ImageMetrics& m : r.per_frame) frames.append(metrics(m));
     d["per_frame"] = frames;
     d["images"] = r.images;
+    d["incomplete_frames"] = r.incomplete_frames;  // of the tested graph (a reference with any is refused)
     return d;
 }
 
@@ -610,14 +602,14 @@ PYBIND11_MODULE(_pathlet, m) {
 
     m.def("build_info", &build_description);
     m.def("phantom", [](const std::string& preset) {
-        cli::SceneSource src;
+        SceneSource src;
         src.phantom = preset;
         return std::const_pointer_cast<Scene>(load_scene_source(src));
     });
     m.def("load", [](const std::string& data, const std::string& mesh, const std::string& time_array,
                      const std::string& velocity_array, double time_step, const std::string& units, bool streamlines,
                      bool pseudo_time) {
-        cli::SceneSource src;
+        SceneSource src;
         src.data = data;
         src.mesh = mesh;
         src.load = {.time_array = time_array,

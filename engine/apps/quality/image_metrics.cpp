@@ -126,13 +126,14 @@ ImageMetrics pool(const std::vector<ImageMetrics>& frames) {
         p.sum_flip_all += f.sum_flip_all;
         p.all_pixels += f.all_pixels;
     }
-    p.ssim = p.ssim_windows ? p.sum_ssim / double(p.ssim_windows) : 1.0;
-    const double mse = p.pixels ? p.sum_sq / (3.0 * double(p.pixels)) : 0.0;
+    const double none = std::numeric_limits<double>::quiet_NaN();  // nothing to measure: n/a
+    p.ssim = p.ssim_windows ? p.sum_ssim / double(p.ssim_windows) : none;
+    const double mse = p.pixels ? p.sum_sq / (3.0 * double(p.pixels)) : none;
     p.rmse = std::sqrt(mse);
-    p.psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
-    p.share_over = p.pixels ? double(p.over) / double(p.pixels) : 0.0;
-    p.flip = p.pixels ? p.sum_flip / double(p.pixels) : 0.0;
-    p.flip_all = p.all_pixels ? p.sum_flip_all / double(p.all_pixels) : 0.0;
+    p.psnr = !p.pixels ? none : mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+    p.share_over = p.pixels ? double(p.over) / double(p.pixels) : none;
+    p.flip = p.pixels ? p.sum_flip / double(p.pixels) : none;
+    p.flip_all = p.all_pixels ? p.sum_flip_all / double(p.all_pixels) : none;
     return p;
 }
 
@@ -140,24 +141,33 @@ FlickerVsReference flicker_vs_reference(const std::vector<Image>& test, const st
                                         const std::vector<std::vector<uint8_t>>& masks) {
     if (test.size() != ref.size() || test.size() != masks.size() || test.size() < 2)
         throw std::invalid_argument("flicker needs at least two frames of both pictures and their masks");
-    FlickerVsReference f;
-    double excess = 0, tc = 0, rc = 0;
-    for (size_t k = 1; k < test.size(); ++k) {
-        for (const Image* im : {&test[k], &test[k - 1], &ref[k - 1]}) require_same(*im, ref[k], masks[k].size());
-        for (size_t i = 0; i < masks[k].size(); ++i) {
-            if (!masks[k][i] && !masks[k - 1][i]) continue;
-            ++f.samples;
-            for (int c = 0; c < 3; ++c) {
-                const auto at = [&](const Image& im) { return double(im.pixels[i * size_t(im.channels) + size_t(c)]); };
-                const double dt = at(test[k]) - at(test[k - 1]), dr = at(ref[k]) - at(ref[k - 1]);
-                excess += std::fabs(dt - dr);
-                tc += std::fabs(dt);
-                rc += std::fabs(dr);
-            }
+    FlickerAccumulator f;
+    for (size_t k = 1; k < test.size(); ++k) f.add(test[k - 1], test[k], ref[k - 1], ref[k], masks[k - 1], masks[k]);
+    return f.result();
+}
+
+void FlickerAccumulator::add(const Image& test_prev, const Image& test, const Image& ref_prev, const Image& ref,
+                             const std::vector<uint8_t>& mask_prev, const std::vector<uint8_t>& mask) {
+    for (const Image* im : {&test, &test_prev, &ref_prev}) require_same(*im, ref, mask.size());
+    if (mask_prev.size() != mask.size()) throw std::invalid_argument("flicker: the masks differ in size");
+    for (size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i] && !mask_prev[i]) continue;
+        ++samples_;
+        for (int c = 0; c < 3; ++c) {
+            const auto at = [&](const Image& im) { return double(im.pixels[i * size_t(im.channels) + size_t(c)]); };
+            const double dt = at(test) - at(test_prev), dr = at(ref) - at(ref_prev);
+            excess_ += std::fabs(dt - dr);
+            test_change_ += std::fabs(dt);
+            reference_change_ += std::fabs(dr);
         }
     }
-    const double n = 3.0 * double(std::max<size_t>(f.samples, 1));
-    f.excess = excess / n, f.test_change = tc / n, f.reference_change = rc / n;
+}
+
+FlickerVsReference FlickerAccumulator::result() const {
+    FlickerVsReference f;
+    f.samples = samples_;
+    const double n = 3.0 * double(std::max<size_t>(samples_, 1));
+    f.excess = excess_ / n, f.test_change = test_change_ / n, f.reference_change = reference_change_ / n;
     return f;
 }
 

@@ -20,10 +20,13 @@
 
 namespace pathlet::quality {
 
+// With nothing to measure (no window inside the image, an empty mask) a measure is NaN, which
+// the command prints as n/a: never 1.0 or infinity for no data.
 struct ImageMetrics {
     size_t pixels = 0;        // in the mask
     size_t ssim_windows = 0;  // windows averaged into ssim
     double ssim = 1.0, rmse = 0.0, psnr = 0.0, share_over = 0.0;
+    bool ssim_measured() const { return ssim_windows > 0; }
     double sum_ssim = 0.0, sum_sq = 0.0;  // sums behind ssim and rmse, for pooling frames
     size_t over = 0;
     double flip = 0.0, flip_all = 0.0;    // mean LDR-FLIP over the mask, over every pixel
@@ -60,6 +63,17 @@ struct FlickerVsReference {
 // `masks[k]`: frame k's pixels either picture covers. Needs at least two frames of one size.
 FlickerVsReference flicker_vs_reference(const std::vector<Image>& test, const std::vector<Image>& reference,
                                         const std::vector<std::vector<uint8_t>>& masks);
+// The same, a pair of consecutive frames at a time (frames measured as they arrive).
+class FlickerAccumulator {
+public:
+    void add(const Image& test_prev, const Image& test, const Image& ref_prev, const Image& ref,
+             const std::vector<uint8_t>& mask_prev, const std::vector<uint8_t>& mask);
+    FlickerVsReference result() const;
+
+private:
+    double excess_ = 0, test_change_ = 0, reference_change_ = 0;
+    size_t samples_ = 0;
+};
 
 // The anti-aliasing figures of ../shared/tools/aa_metric.py, for a picture against a supersampled
 // one of the same frame: rms (0..255 levels) over the pixels either picture covers (a channel more

@@ -5,6 +5,9 @@
 // compared frame by frame over the pixels either covers (its coverage: the depth the wall pass
 // reads, or a line pass's depth output), with image_metrics.hpp's measures pooled over the
 // frames and the flicker against the reference's own change. Optionally the difference images.
+// Frames are measured as the reference renders them: the tested graph's wait compressed in a
+// temporary file, so memory does not grow with the frames. A reference with incomplete frames
+// (fragments dropped or cut) is refused; the tested graph's are named.
 #include "image_metrics.hpp"
 
 #include "renderer.hpp"
@@ -39,10 +42,14 @@ struct ReferenceResult {
     AaFigures aa, reference_aa;            // aa_metric's figures against the reference, pooled over frames;
                                            // the reference's speckles (its rms 0)
     std::vector<std::string> images;       // files written to out_dir
+    std::vector<size_t> incomplete_frames;  // of the tested graph (fragments dropped), ascending
 };
 
 // Throws GraphError (bad graph or --set), std::invalid_argument (a graph without a coverage or
-// with an output that is no colour image) and whatever rendering throws.
+// with an output that is no colour image), std::runtime_error (a reference with incomplete
+// frames) and whatever rendering throws.
 ReferenceResult measure_against_reference(Runtime& rt, const Scene& scene, const ReferenceOptions& opt);
+// What to say when the tested graph rendered incomplete frames, else "".
+std::string incomplete_frames_note(const ReferenceResult& r);
 
 }  // namespace pathlet::quality

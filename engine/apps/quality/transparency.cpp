@@ -118,6 +118,204 @@ int64_t nearest_segment(const Pathlines& pl, const WindowRanges& w, uint32_t lin
     return at;
 }
 
+
+// The lists of one frame as read back: per pixel the head node, and the nodes (colour, depth
+// bits, next, line id).
+struct FrameLists {
+    int width = 0, height = 0;
+    std::vector<uint32_t> heads;
+    std::vector<glm::uvec4> nodes;
+};
+
+// One measurement, in stage order: the focus (the fastest segments over the whole data), the
+// render's options (the lists kept for reading back), then per frame: read the lists, place and
+// composite every pixel's fragments, add the frame's per-segment measures; at the end, the
+// summary of all frames.
+class Measurement {
+public:
+    Measurement(const Scene& scene, const TransparencyOptions& q, Oit oit, TransparencyResult& res)
+        : scene_(scene), pl_(scene.lines), q_(q), oit_(std::move(oit)), res_(res), cam_(frame_bounds(scene.bounds(), q.size)),
+          inv_view_(glm::inverse(cam_.view)), sums_(pl_.position.size()), prev_alpha_(pl_.position.size(), -1.0f),
+          cur_alpha_(pl_.position.size(), -1.0f) {
+        pick_focus();
+    }
+
+    // The run: the graph without images, one warm-up frame, the lists kept for reading back.
+    RenderOptions render_options() {
+        RenderOptions opt;
+        opt.graph_path = q_.graph_path;
+        opt.sets = q_.sets;
+        opt.size = q_.size;
+        opt.time = q_.time ? *q_.time : default_quality_time(scene_);
+        if (!q_.time) std::fprintf(stderr, "note: %s\n", picked_time_note(opt.time, scene_, "11 frames from the middle").c_str());
+        opt.repeat = std::max(q_.repeat, 1);
+        opt.write_images = false;
+        opt.quiet = true;
+        opt.warmup = 1;
+        opt.keep = {oit_.heads, oit_.nodes, oit_.counter};
+        opt.keep.insert(opt.keep.end(), oit_.oo_lists.begin(), oit_.oo_lists.end());
+        opt.keep.insert(opt.keep.end(), oit_.oo_targets.begin(), oit_.oo_targets.end());
+        for (double t : opt.time.times())
+            for (int k = 0; k < opt.repeat; ++k) times_.push_back(t);
+        return opt;
+    }
+
+    void frame(const Executor& ex, size_t frame) {
+        const double t = times_[std::min(frame, times_.size() - 1)];
+        if (frame == 0) res_.first_time = t;
+        res_.last_time = t;
+        // The graph's window and the resolve's K, as compiled.
+        double window = 1.0;
+        int keep = 32;
+        for (const CompiledPass& p : ex.graph().passes) {
+            if (p.name == oit_.fill && p.params.contains("window")) window = p.params["window"].get<double>();
+            if (p.name == oit_.resolve && p.params.contains("max_fragments")) keep = p.params["max_fragments"].get<int>();
+        }
+        const bool whole = !(window > 0.0) || pl_.timeless;
+        const FrameLists lists = read_lists(ex);
+        sums_.clear();
+        composite_pixels(lists, window_ranges(pl_, t - window, t, whole), keep);
+        add_segment_measures(frame);
+        ++res_.frames;
+    }
+
+    void summarize() {
+        res_.focus_footprint = focus_fp_;
+        res_.context_seen = context_seen_;
+        res_.focus_visibility = focus_fp_ ? focus_ink_ / double(focus_fp_) : 0.0;
+        res_.focus_unoccluded = focus_fp_ ? focus_unocc_ / double(focus_fp_) : 0.0;
+        res_.focus_ink_share = all_ink_ > 0.0 ? focus_ink_ / all_ink_ : 0.0;
+        res_.context_coverage = context_seen_ ? double(context_visible_) / double(context_seen_) : 0.0;
+        res_.pixel_coverage = covered_ ? coverage_sum_ / double(covered_) : 0.0;
+        if (changes_.empty()) return;
+        double sum = 0.0;
+        for (double d : changes_) sum += d;
+        res_.alpha_change_mean = sum / double(changes_.size());
+        const size_t i = std::min(changes_.size() - 1, size_t(0.95 * double(changes_.size())));
+        std::nth_element(changes_.begin(), changes_.begin() + std::ptrdiff_t(i), changes_.end());
+        res_.alpha_change_p95 = changes_[i];
+        res_.alpha_change_max = *std::max_element(changes_.begin(), changes_.end());
+    }
+
+private:
+    // Focus: the data segments whose mean speed is in the top focus_share, over the whole data.
+    void pick_focus() {
+        speed_.assign(pl_.position.size(), -1.0f);
+        std::vector<float> all;
+        for (const LineRange& r : pl_.lines)
+            for (uint32_t k = r.first; k + 1 < r.first + r.count; ++k) {
+                speed_[k] = 0.5f * (glm::length(pl_.velocity[k]) + glm::length(pl_.velocity[k + 1]));
+                all.push_back(speed_[k]);
+            }
+        if (all.empty()) return;
+        const size_t i = std::min(all.size() - 1, size_t((1.0 - q_.focus_share) * double(all.size())));
+        std::nth_element(all.begin(), all.begin() + std::ptrdiff_t(i), all.end());
+        res_.focus_speed = all[i];
+    }
+    bool is_focus(size_t s) const { return speed_[s] >= float(res_.focus_speed); }
+
+    // The final lists, and the overflow of every list: fragments beyond the node buffer, and
+    // opacity optimization's own lists (their overflow biases its opacities).
+    FrameLists read_lists(const Executor& ex) {
+        FrameLists l;
+        const Texture heads_tex = ex.texture(oit_.heads);
+        const Buffer nodes_buf = ex.buffer(oit_.nodes), counter_buf = ex.buffer(oit_.counter);
+        const size_t capacity = nodes_buf.bytes / 16;
+        const uint32_t count = read_buffer<uint32_t>(counter_buf, 1)[0];
+        if (count > capacity) res_.overflow += count - capacity;
+        l.nodes = read_buffer<glm::uvec4>(nodes_buf, std::min<size_t>(count, capacity));
+        l.width = heads_tex.width, l.height = heads_tex.height;
+        l.heads.resize(size_t(l.width) * size_t(l.height));
+        glGetTextureImage(heads_tex.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(l.heads.size() * 4), l.heads.data());
+        for (const std::string& name : oit_.oo_lists) {
+            const std::vector<uint32_t> h = read_buffer<uint32_t>(ex.buffer(name), 8);
+            if (h[6] > h[5]) res_.overflow += h[6] - h[5];
+        }
+        for (const std::string& name : oit_.oo_targets) res_.overflow += read_buffer<uint32_t>(ex.buffer(name), 8)[5];
+        return l;
+    }
+
+    void composite_pixels(const FrameLists& l, const WindowRanges& wr, int keep) {
+        for (int y = 0; y < l.height; ++y)
+            for (int x = 0; x < l.width; ++x) {
+                pixel_fragments(l, x, y, wr);
+                if (frags_.empty()) continue;
+                res_.fragments += frags_.size();
+                if (frags_.size() > size_t(keep)) res_.overflow += frags_.size() - size_t(keep);
+                coverage_sum_ += composite_pixel(frags_, keep, sums_);
+                ++covered_;
+            }
+    }
+
+    // The fragments of pixel (x, y), each placed on its line's nearest segment in the window.
+    void pixel_fragments(const FrameLists& l, int x, int y, const WindowRanges& wr) {
+        frags_.clear();
+        const float span = cam_.far_plane - cam_.near_plane;
+        size_t guard = 0;
+        for (uint32_t i = l.heads[size_t(y) * size_t(l.width) + size_t(x)]; i != kEnd && i < l.nodes.size() && guard < l.nodes.size();
+             i = l.nodes[i].z, ++guard) {
+            const glm::uvec4 n = l.nodes[i];
+            Fragment f;
+            f.depth = bits_float(n.y);
+            f.line = n.w;
+            f.color = n.x;
+            f.alpha = float(n.x >> 24) / 255.0f;
+            // The fragment's point: its pixel centre at its linear depth (GL rows bottom-up).
+            const float nx = (x + 0.5f) / float(l.width) * 2.0f - 1.0f;
+            const float ny = (y + 0.5f) / float(l.height) * 2.0f - 1.0f;
+            const float eye = cam_.near_plane + f.depth * span;
+            const glm::vec3 p(inv_view_ * glm::vec4(nx * eye / cam_.proj[0][0], ny * eye / cam_.proj[1][1], -eye, 1.0f));
+            f.segment = nearest_segment(pl_, wr, f.line, p);
+            res_.located += f.segment >= 0;
+            frags_.push_back(f);
+        }
+    }
+
+    // The frame's per-segment measures and the change of each segment's mean opacity.
+    void add_segment_measures(size_t frame) {
+        double frame_max = 0.0;
+        for (uint32_t s : sums_.seen) {
+            const double a = sums_.footprint[s];
+            all_ink_ += sums_.ink[s];
+            if (is_focus(s)) {
+                focus_ink_ += sums_.ink[s];
+                focus_unocc_ += sums_.unoccluded[s];
+                focus_fp_ += sums_.footprint[s];
+            } else {
+                ++context_seen_;
+                context_visible_ += sums_.ink[s] / a >= q_.threshold;
+            }
+            cur_alpha_[s] = float(sums_.alpha[s] / a);
+            if (prev_alpha_[s] >= 0.0f) {
+                const double d = std::fabs(double(cur_alpha_[s]) - double(prev_alpha_[s]));
+                changes_.push_back(d);
+                frame_max = std::max(frame_max, d);
+            }
+        }
+        if (frame > 0) res_.max_alpha_change_per_frame.push_back(frame_max);
+        for (uint32_t s : prev_seen_) prev_alpha_[s] = -1.0f;
+        prev_seen_ = sums_.seen;
+        for (uint32_t s : prev_seen_) prev_alpha_[s] = cur_alpha_[s], cur_alpha_[s] = -1.0f;
+    }
+
+    const Scene& scene_;
+    const Pathlines& pl_;
+    const TransparencyOptions& q_;
+    const Oit oit_;
+    TransparencyResult& res_;
+    const Camera cam_;
+    const glm::mat4 inv_view_;
+    std::vector<double> times_;  // per rendered frame
+    std::vector<float> speed_;   // per segment (its first point), -1 for a line's last point
+    SegmentSums sums_;
+    std::vector<float> prev_alpha_, cur_alpha_;
+    std::vector<uint32_t> prev_seen_;
+    std::vector<double> changes_;
+    std::vector<Fragment> frags_;
+    double focus_ink_ = 0, focus_unocc_ = 0, all_ink_ = 0, coverage_sum_ = 0;
+    size_t focus_fp_ = 0, context_seen_ = 0, context_visible_ = 0, covered_ = 0;
+};
+
 }  // namespace
 
 void SegmentSums::clear() {
@@ -161,156 +359,14 @@ TransparencyResult measure_transparency(Runtime& rt, const Scene& scene, const T
     TransparencyResult res;
     const json full = expanded_graph_json(q.graph_path);
     res.graph = full.value("name", fs::path(q.graph_path).stem().string());
-    const Oit oit = find_oit(full);
+    Oit oit = find_oit(full);
     if (!oit.why_not.empty()) {
         res.not_measured = oit.why_not;
         return res;
     }
-    const Pathlines& pl = scene.lines;
-    // Focus: the data segments whose mean speed is in the top focus_share, over the whole data.
-    std::vector<float> speed(pl.position.size(), -1.0f);
-    std::vector<float> all;
-    for (const LineRange& r : pl.lines)
-        for (uint32_t k = r.first; k + 1 < r.first + r.count; ++k) {
-            speed[k] = 0.5f * (glm::length(pl.velocity[k]) + glm::length(pl.velocity[k + 1]));
-            all.push_back(speed[k]);
-        }
-    if (!all.empty()) {
-        const size_t i = std::min(all.size() - 1, size_t((1.0 - q.focus_share) * double(all.size())));
-        std::nth_element(all.begin(), all.begin() + std::ptrdiff_t(i), all.end());
-        res.focus_speed = all[i];
-    }
-    auto is_focus = [&](size_t s) { return speed[s] >= float(res.focus_speed); };
-
-    RenderOptions opt;
-    opt.graph_path = q.graph_path;
-    opt.sets = q.sets;
-    opt.size = q.size;
-    opt.time = q.time ? *q.time : default_quality_time(scene);
-    if (!q.time) std::fprintf(stderr, "note: %s\n", picked_time_note(opt.time, scene, "11 frames from the middle").c_str());
-    opt.repeat = std::max(q.repeat, 1);
-    opt.write_images = false;
-    opt.quiet = true;
-    opt.warmup = 1;
-    opt.keep = {oit.heads, oit.nodes, oit.counter};
-    opt.keep.insert(opt.keep.end(), oit.oo_lists.begin(), oit.oo_lists.end());
-    opt.keep.insert(opt.keep.end(), oit.oo_targets.begin(), oit.oo_targets.end());
-    std::vector<double> times;
-    for (double t : opt.time.times())
-        for (int k = 0; k < opt.repeat; ++k) times.push_back(t);
-    const Camera cam = frame_bounds(scene.bounds(), q.size);
-    const glm::mat4 inv_view = glm::inverse(cam.view);
-
-    SegmentSums sums(pl.position.size());
-    std::vector<float> prev_alpha(pl.position.size(), -1.0f), cur_alpha(pl.position.size(), -1.0f);
-    std::vector<uint32_t> prev_seen;
-    std::vector<double> changes;
-    double focus_ink = 0, focus_unocc = 0, all_ink = 0, coverage_sum = 0;
-    size_t focus_fp = 0, context_seen = 0, context_visible = 0, covered = 0;
-    std::vector<Fragment> frags;
-
-    render(rt, scene, opt, [&](const Executor& ex, size_t frame) {
-        const double t = times[std::min(frame, times.size() - 1)];
-        if (frame == 0) res.first_time = t;
-        res.last_time = t;
-        // The graph's window and the resolve's K, as compiled.
-        double window = 1.0;
-        int keep = 32;
-        for (const CompiledPass& p : ex.graph().passes) {
-            if (p.name == oit.fill && p.params.contains("window")) window = p.params["window"].get<double>();
-            if (p.name == oit.resolve && p.params.contains("max_fragments")) keep = p.params["max_fragments"].get<int>();
-        }
-        const bool whole = !(window > 0.0) || pl.timeless;
-        const WindowRanges wr = window_ranges(pl, t - window, t, whole);
-
-        const Texture heads_tex = ex.texture(oit.heads);
-        const Buffer nodes_buf = ex.buffer(oit.nodes), counter_buf = ex.buffer(oit.counter);
-        const size_t capacity = nodes_buf.bytes / 16;
-        const uint32_t count = read_buffer<uint32_t>(counter_buf, 1)[0];
-        if (count > capacity) res.overflow += count - capacity;
-        const std::vector<glm::uvec4> nodes = read_buffer<glm::uvec4>(nodes_buf, std::min<size_t>(count, capacity));
-        std::vector<uint32_t> heads(size_t(heads_tex.width) * size_t(heads_tex.height));
-        glGetTextureImage(heads_tex.id, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(heads.size() * 4), heads.data());
-        // Opacity optimization's own lists: their overflow biases its opacities.
-        for (const std::string& name : oit.oo_lists) {
-            const std::vector<uint32_t> h = read_buffer<uint32_t>(ex.buffer(name), 8);
-            if (h[6] > h[5]) res.overflow += h[6] - h[5];
-        }
-        for (const std::string& name : oit.oo_targets) res.overflow += read_buffer<uint32_t>(ex.buffer(name), 8)[5];
-
-        sums.clear();
-        const float span = cam.far_plane - cam.near_plane;
-        for (int y = 0; y < heads_tex.height; ++y)
-            for (int x = 0; x < heads_tex.width; ++x) {
-                frags.clear();
-                size_t guard = 0;
-                for (uint32_t i = heads[size_t(y) * size_t(heads_tex.width) + size_t(x)]; i != kEnd && i < nodes.size() &&
-                                                                                       guard < nodes.size();
-                     i = nodes[i].z, ++guard) {
-                    const glm::uvec4 n = nodes[i];
-                    Fragment f;
-                    f.depth = bits_float(n.y);
-                    f.line = n.w;
-                    f.color = n.x;
-                    f.alpha = float(n.x >> 24) / 255.0f;
-                    // The fragment's point: its pixel centre at its linear depth (GL rows bottom-up).
-                    const float nx = (x + 0.5f) / float(heads_tex.width) * 2.0f - 1.0f;
-                    const float ny = (y + 0.5f) / float(heads_tex.height) * 2.0f - 1.0f;
-                    const float eye = cam.near_plane + f.depth * span;
-                    const glm::vec3 p(inv_view * glm::vec4(nx * eye / cam.proj[0][0], ny * eye / cam.proj[1][1], -eye, 1.0f));
-                    f.segment = nearest_segment(pl, wr, f.line, p);
-                    res.located += f.segment >= 0;
-                    frags.push_back(f);
-                }
-                if (frags.empty()) continue;
-                res.fragments += frags.size();
-                if (frags.size() > size_t(keep)) res.overflow += frags.size() - size_t(keep);
-                coverage_sum += composite_pixel(frags, keep, sums);
-                ++covered;
-            }
-        // The frame's per-segment measures and the change of each segment's mean opacity.
-        double frame_max = 0.0;
-        for (uint32_t s : sums.seen) {
-            const double a = sums.footprint[s];
-            all_ink += sums.ink[s];
-            if (is_focus(s)) {
-                focus_ink += sums.ink[s];
-                focus_unocc += sums.unoccluded[s];
-                focus_fp += sums.footprint[s];
-            } else {
-                ++context_seen;
-                context_visible += sums.ink[s] / a >= q.threshold;
-            }
-            cur_alpha[s] = float(sums.alpha[s] / a);
-            if (prev_alpha[s] >= 0.0f) {
-                const double d = std::fabs(double(cur_alpha[s]) - double(prev_alpha[s]));
-                changes.push_back(d);
-                frame_max = std::max(frame_max, d);
-            }
-        }
-        if (frame > 0) res.max_alpha_change_per_frame.push_back(frame_max);
-        for (uint32_t s : prev_seen) prev_alpha[s] = -1.0f;
-        prev_seen = sums.seen;
-        for (uint32_t s : prev_seen) prev_alpha[s] = cur_alpha[s], cur_alpha[s] = -1.0f;
-        ++res.frames;
-    });
-
-    res.focus_footprint = focus_fp;
-    res.context_seen = context_seen;
-    res.focus_visibility = focus_fp ? focus_ink / double(focus_fp) : 0.0;
-    res.focus_unoccluded = focus_fp ? focus_unocc / double(focus_fp) : 0.0;
-    res.focus_ink_share = all_ink > 0.0 ? focus_ink / all_ink : 0.0;
-    res.context_coverage = context_seen ? double(context_visible) / double(context_seen) : 0.0;
-    res.pixel_coverage = covered ? coverage_sum / double(covered) : 0.0;
-    if (!changes.empty()) {
-        double sum = 0.0;
-        for (double d : changes) sum += d;
-        res.alpha_change_mean = sum / double(changes.size());
-        const size_t i = std::min(changes.size() - 1, size_t(0.95 * double(changes.size())));
-        std::nth_element(changes.begin(), changes.begin() + std::ptrdiff_t(i), changes.end());
-        res.alpha_change_p95 = changes[i];
-        res.alpha_change_max = *std::max_element(changes.begin(), changes.end());
-    }
+    Measurement m(scene, q, std::move(oit), res);
+    render(rt, scene, m.render_options(), [&](const Executor& ex, size_t frame) { m.frame(ex, frame); });
+    m.summarize();
     return res;
 }
 

@@ -31,11 +31,12 @@ std::vector<std::string> FileWatch::changed() {
     return out;
 }
 
-std::vector<std::string> graph_and_shader_files(const std::string& graph, const std::vector<std::string>& shader_dirs) {
+std::vector<std::string> graph_and_shader_files(const std::string& graph, const std::vector<std::string>& shader_dirs,
+                                                const std::vector<std::string>& hook_files) {
     std::set<std::string> files{graph};
+    files.insert(hook_files.begin(), hook_files.end());  // a hook file the user named by path may lie anywhere
     for (const auto& d : shader_dirs) {
         std::error_code ec;
-        if (fs::is_regular_file(d, ec)) files.insert(d);  // a hook file the user named by path
         for (fs::directory_iterator it(d, ec), end; !ec && it != end; it.increment(ec)) {
             const std::string ext = it->path().extension().string();
             if (ext == ".glsl" || ext == ".vert" || ext == ".geom" || ext == ".frag" || ext == ".comp")

@@ -30,7 +30,8 @@ private:
 };
 
 // The files a graph depends on for hot reload: the graph itself, every .glsl/.vert/.geom/.frag
-// in the given shader folders, and the files among them (hooks the user named by path).
-std::vector<std::string> graph_and_shader_files(const std::string& graph, const std::vector<std::string>& shader_dirs);
+// in the given shader folders, and the hook files (a hook the user named by path may lie anywhere).
+std::vector<std::string> graph_and_shader_files(const std::string& graph, const std::vector<std::string>& shader_dirs,
+                                                const std::vector<std::string>& hook_files = {});
 
 }  // namespace pathlet::view

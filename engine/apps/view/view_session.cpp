@@ -135,10 +135,13 @@ json ViewSession::value(const std::string& name) const {
 }
 
 std::vector<std::string> ViewSession::watched_files() const {
-    std::set<std::string> dirs;
-    for (const auto& p : cur_->cg.passes)
-        for (const auto& d : cur_->exec->shader_dirs_for(*p.type)) dirs.insert(d);
-    return graph_and_shader_files(path_, {dirs.begin(), dirs.end()});
+    std::set<std::string> dirs, hooks;
+    for (size_t i = 0; i < cur_->cg.passes.size(); ++i) {
+        const ShaderSource& s = cur_->exec->shaders(i);
+        dirs.insert(s.dirs().begin(), s.dirs().end());
+        for (const auto& [role, file] : s.hooks()) hooks.insert(file);
+    }
+    return graph_and_shader_files(path_, {dirs.begin(), dirs.end()}, {hooks.begin(), hooks.end()});
 }
 
 }  // namespace pathlet::view

@@ -57,19 +57,20 @@ AsyncOutput::Plan AsyncOutput::plan_for(const Capture& c) {
     if (fi && (fi->is_integer || (fi->depth && !is_depth(f))))
         throw std::runtime_error(c.what + ": cannot read the texture back: " + fi->name +
                                  " is not a colour or depth format an image holds");
+    const int factor = c.factor > 0 ? c.factor : opt_.ssaa;
     Plan p;
     if (is_depth(f)) {
         p.layout = RawFrame::Layout::Depth;
-        p.factor = opt_.ssaa;
+        p.factor = factor;
         p.format = GL_DEPTH_COMPONENT;
         if (depth_copy_.exact(f)) p.depth_copy = true, p.format = GL_RED;  // R32F on the GPU
         return p;
     }
     NativeRead native;
     const bool own_format = native_read(f, native) && widening_exact(f);
-    if (opt_.ssaa > 1) {
-        p.factor = opt_.ssaa;
-        if (is_filterable(f) && filter_.exact(f, opt_.ssaa)) {
+    if (factor > 1) {
+        p.factor = factor;
+        if (is_filterable(f) && filter_.exact(f, factor)) {
             p.layout = RawFrame::Layout::Sums;
             return p;
         }
@@ -111,8 +112,9 @@ void AsyncOutput::capture(const std::vector<Capture>& captures) {
     ++frames_captured_;
     for (size_t i = 0; i < captures.size(); ++i) {
         const Capture& c = captures[i];
-        auto pit = plans_.find(c.tex.internal_format);  // measured once per format
-        if (pit == plans_.end()) pit = plans_.emplace(c.tex.internal_format, plan_for(c)).first;
+        const std::pair<GLenum, int> key{c.tex.internal_format, c.factor > 0 ? c.factor : opt_.ssaa};
+        auto pit = plans_.find(key);  // measured once per format and factor
+        if (pit == plans_.end()) pit = plans_.emplace(key, plan_for(c)).first;
         const Plan& p = pit->second;
         RawFrame raw;  // all but the bytes, which the ring hands over
         raw.layout = p.layout;
@@ -124,9 +126,9 @@ void AsyncOutput::capture(const std::vector<Capture>& captures) {
         raw.height = c.tex.height;
         GLuint src = c.tex.id;
         if (p.layout == RawFrame::Layout::Sums) {
-            raw.width /= opt_.ssaa;
-            raw.height /= opt_.ssaa;
-            src = filter_.sums(c.tex.id, raw.width, raw.height, opt_.ssaa, i);
+            raw.width /= p.factor;
+            raw.height /= p.factor;
+            src = filter_.sums(c.tex.id, raw.width, raw.height, p.factor, i);
         } else if (p.depth_copy) {
             src = depth_copy_.to_float(c.tex.id, c.tex.internal_format, raw.width, raw.height, i);
         }
@@ -157,12 +159,14 @@ void AsyncOutput::submit(RawFrame&& raw, const Capture& c, bool last_of_frame) {
         Image img;
         std::string file, staged;
         bool to_image = false, last = false;
+        std::function<void(const Image&)> sink;
     };
     auto s = std::make_shared<State>();
     s->raw = std::move(raw);
     s->file = c.file;
     s->to_image = c.to_image && opt_.on_image;
     s->last = last_of_frame;
+    s->sink = c.sink;
     if (!c.file.empty())  // numbered: a pattern without {frame} names every frame's file alike
         s->staged = (fs::path(staging_dir(c.file)) /
                      (std::to_string(job_seq_++) + "-" + fs::path(c.file).filename().string()))
@@ -180,11 +184,12 @@ void AsyncOutput::submit(RawFrame&& raw, const Capture& c, bool last_of_frame) {
         }
         if (!image_file_complete(s->staged))  // a full disk cuts files short without the encoder noticing
             throw std::runtime_error(s->file + ": cannot write image: the file came out incomplete (is the disk full?)");
-        if (!s->to_image) s->img = {};  // encoded: the pixels are not needed while it waits its turn
+        if (!s->to_image && !s->sink) s->img = {};  // encoded: the pixels are not needed while it waits its turn
     };
     job.commit = [this, s] {
         if (!s->staged.empty()) commit_temp(s->staged, s->file);
         if (s->to_image) opt_.on_image(s->img);
+        if (s->sink) s->sink(s->img);
         if (s->last) ++frames_written_;
     };
     job.cancel = [s] {

@@ -43,6 +43,11 @@ public:
         Texture tex;           // the resource, at ssaa x the size
         std::string file;      // written there (temp name, then rename); "" = not written
         bool to_image = false; // handed to on_image
+        // Handed this capture's image, on a writer in frame order (a caller reading a resource back).
+        std::function<void(const Image&)> sink;
+        // The box filter's factor: 0 = Options::ssaa (a render-size output); 1 keeps a texture of
+        // another size as it is.
+        int factor = 0;
     };
 
     explicit AsyncOutput(Options o);
@@ -84,7 +89,7 @@ private:
     GpuBoxFilter filter_;
     GpuDepthCopy depth_copy_;
     std::map<GLenum, std::shared_ptr<const ByteTable>> tables_;  // nullptr: not read as bytes
-    std::map<GLenum, Plan> plans_;                               // by internal format
+    std::map<std::pair<GLenum, int>, Plan> plans_;               // by internal format and factor
     std::map<std::string, std::string> staging_;  // output folder -> its temp folder
     size_t frames_captured_ = 0;
     uint64_t job_seq_ = 0;

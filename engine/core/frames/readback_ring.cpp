@@ -104,11 +104,28 @@ void ReadbackRing::copy(GLuint tex, int w, int h, GLenum format, GLenum type, in
 
 void ReadbackRing::end_frame() {
     if (open_.copies.empty()) return;
+    drop_unused_sizes();
     open_.fence = GpuFence::insert();
     glFlush();  // the fence can signal without our next wait having to flush it
     frames_.push_back(std::move(open_));
     open_ = {};
     while (frames_.size() > depth_) take_oldest(true);
+}
+
+void ReadbackRing::drop_unused_sizes() {
+    // A size this frame did not copy is one a resize left behind (the viewer's window): its
+    // free buffers go, once no reader holds them. Busy ones go when they come back free.
+    auto used = [&](size_t bytes) {
+        for (const Copy& c : open_.copies)
+            if (c.bytes == bytes) return true;
+        return false;
+    };
+    for (size_t i = free_.size(); i-- > 0;) {
+        const Buffer& b = free_[i];
+        if (used(b.size) || b.lease->in_use.load(std::memory_order_acquire)) continue;
+        glDeleteBuffers(1, &b.id);  // unmaps it
+        free_.erase(free_.begin() + long(i));
+    }
 }
 
 void ReadbackRing::poll() {

@@ -4,9 +4,10 @@
 // without waiting, and only when `depth` frames are in flight does end_frame() wait for the
 // oldest. So frame N+1 renders while frame N is copied. The pack buffers are mapped once, for
 // good (persistent, coherent): a hand-over is a pointer into one, read by a writer thread, and
-// the render thread copies nothing. GL thread only (the PackedPixels excepted); the context must
-// be current for every call, the destructor included, and every PackedPixels must be gone
-// before the destructor runs.
+// the render thread copies nothing. A size no frame copies any more (the viewer's window was
+// resized) leaves no buffers behind: end_frame() frees the free ones of other sizes. GL thread
+// only (the PackedPixels excepted); the context must be current for every call, the destructor
+// included, and every PackedPixels must be gone before the destructor runs.
 #pragma once
 
 #include "frames/raw_frame.hpp"
@@ -48,7 +49,7 @@ public:
     size_t in_flight() const { return frames_.size(); }
     uint64_t bytes_copied() const { return bytes_copied_; }  // into pack buffers, so far
     size_t depth() const { return depth_; }
-    size_t buffers() const { return free_.size() + busy_buffers(); }  // pack buffers made so far
+    size_t buffers() const { return free_.size() + busy_buffers(); }  // pack buffers held now
 
 private:
     struct Lease {
@@ -70,6 +71,7 @@ private:
         GpuFence fence;  // checked through pathlet/gpu_fence.hpp (the simulated latency too)
     };
     Buffer take_buffer(size_t bytes);
+    void drop_unused_sizes();  // frees free buffers of sizes the open frame does not copy
     void take(Frame& f);  // hands over, recycles the buffers (leased)
     void take_oldest(bool wait);
     size_t busy_buffers() const;

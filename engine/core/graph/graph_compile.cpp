@@ -247,19 +247,6 @@ private:
         return c;
     }
 
-    // The files the pass's hook parameters name, as found (validated: each is there).
-    std::vector<CompiledPass::HookFile> hook_files(const PassTypeInfo& t, const json& params) const {
-        std::vector<CompiledPass::HookFile> out;
-        for (const ParamDecl& d : t.params) {
-            if (d.hook.empty() || !params.contains(d.name) || !params[d.name].is_string()) continue;
-            const std::string name = params[d.name].get<std::string>();
-            if (name.empty()) continue;
-            const std::string file = find_hook_file(name, t, g_.dirs);
-            out.push_back({d.name, name, std::filesystem::absolute(file).lexically_normal().string()});
-        }
-        return out;
-    }
-
     // Passes in execution order, with resolved parameters and bindings; the outputs by name.
     void compiled_passes(CompiledGraph& cg) const {
         for (int p : order_) {
@@ -269,7 +256,8 @@ private:
             c.type = idx_.types[p];
             c.pointer = d.pointer;
             c.params = params_[p];
-            c.hooks = hook_files(*c.type, c.params);
+            c.hooks = d.hooks;
+            c.shaders = pass_shaders(*c.type, g_.dirs, c.hooks);
             for (const auto& b : inputs_[p]) c.bindings[b.pin] = {compiled_index_[b.resource], b.prev};
             for (const auto& b : idx_.outputs[p]) {
                 c.bindings[b.pin] = {compiled_index_[b.resource], false};
@@ -300,9 +288,11 @@ private:
 
 }  // namespace
 
-CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::ivec2 output_size) {
-    std::optional<GraphFile> settled;
-    return Compilation(settle_pending_swaps(g, reg, settled), reg, output_size).run();
+CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::ivec2 output_size, float pixel_scale) {
+    std::optional<GraphFile> resolved;
+    CompiledGraph cg = Compilation(with_hooks_resolved(g, reg, resolved), reg, output_size).run();
+    cg.pixel_scale = pixel_scale;
+    return cg;
 }
 
 }  // namespace pathlet

@@ -98,20 +98,16 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
     idx.reg = &reg;
     auto error = [&](const std::string& ptr, const std::string& msg) { diags.push_back({g.path, ptr, msg}); };
 
+    diags.insert(diags.end(), g.hook_problems.begin(), g.hook_problems.end());
     idx.resources = g.resources;
     for (size_t r = 0; r < g.resources.size(); ++r) idx.resource_by_name[g.resources[r].name] = int(r);
 
     for (size_t i = 0; i < g.passes.size(); ++i) {
         const PassDecl& p = g.passes[i];
         idx.pass_by_name.emplace(p.name, int(i));
-        const PassTypeInfo* t = reg.find(p.type);
-        if (t) {  // with the parameters of its hook files
-            std::string err, at;
-            auto inst = pass_instance_type(g, p, *t, err, at);
-            if (!err.empty()) error(at, err);
-            t = inst.get();
-            idx.instance_types.push_back(std::move(inst));
-        }
+        // Its instance type: with the parameters of its hooks (resolve_hooks).
+        const PassTypeInfo* t = p.instance_type ? p.instance_type.get() : reg.find(p.type);
+        if (p.instance_type) idx.instance_types.push_back(p.instance_type);
         idx.types.push_back(t);
         if (!t) {
             error(p.pointer + "/type", "unknown pass type '" + p.type + "'" +

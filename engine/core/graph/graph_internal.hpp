@@ -74,37 +74,32 @@ std::vector<std::vector<int>> pass_dependencies(const GraphIndex& idx);
 
 // The checks of validate_graph over a built index.
 void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags);
+// Values that must agree: parameter ranges and what a pass shares with an input's writer
+// (graph_agree.cpp).
+void check_agreement(const GraphIndex& idx, std::vector<Diagnostic>& diags);
 
-// The type of pass `p` of `g` (of registry type `t`): with the parameters its hook files declare
-// (hook_params.hpp). On a problem with a hook, `err` says what (and the pointer where) and the
-// registry's type is returned.
-std::shared_ptr<const PassTypeInfo> pass_instance_type(const GraphFile& g, const PassDecl& p, const PassTypeInfo& t,
-                                                       std::string& err, std::string& err_pointer);
-
-// Where `change` (by an extending graph, --set or Python) replaced a hook of pass `p` (of
-// registry type `t`): drops the parameters the replaced hook declares that were set before the
-// change and that the pass's new type lacks, and the variables that fed only them, with a note
-// in g.notes (graph_hook_swap.cpp).
-void swap_hook_params(GraphFile& g, PassDecl& p, const PassTypeInfo& t, const PassDecl::ParamsChange& change);
-
-// `g` itself, or, when graphs extending its base replaced hooks not yet settled
-// (settle_hook_swaps: a graph validated without apply_overrides), a settled copy in `copy`.
-const GraphFile& settle_pending_swaps(const GraphFile& g, const PassRegistry& reg, std::optional<GraphFile>& copy);
+// `g` itself when its hooks are resolved, else a copy with them resolved in `copy` (a graph
+// validated or compiled without apply_overrides).
+const GraphFile& with_hooks_resolved(const GraphFile& g, const PassRegistry& reg, std::optional<GraphFile>& copy);
 
 // ---- reading (graph_parse.cpp, graph_extends.cpp) -----------------------------------------
 // A graph file's JSON (comments allowed, nesting and size capped), errors placed by line.
 json graph_json_from_text(const std::string& text, const std::string& path);
 json read_graph_json(const std::string& path);
-// A pass's params changed by an extending graph (PassDecl::changes), for the pass of that name.
-struct ExtendsChange {
-    std::string pass;
-    PassDecl::ParamsChange change;
+// What each graph file of an extends chain wrote, by layer (0 = the deepest base): per pass
+// the layer of each parameter's last write and the hooks each layer replaced (PassDecl).
+struct LayerLog {
+    int layers = 0;
+    std::map<std::string, std::map<std::string, int>> written;  // pass -> param -> layer
+    std::vector<std::pair<std::string, PassDecl::HookSwap>> swaps;  // pass, swap
 };
 // `root` (read from `path`) with its "extends" chain merged in; `dirs` gets the folders of the
-// file and its bases, `chain` the base files, `changes` the params each extending file changed
-// (deepest base first).
+// file and its bases, `chain` the base files, `log` what each file wrote.
 json expand_extends(json root, const std::string& path, std::vector<std::string>& dirs, std::vector<std::string>& chain,
-                    std::vector<ExtendsChange>* changes = nullptr);
+                    LayerLog* log = nullptr);
+// The hook names the passes of a graph's JSON give (a "$variable" read from the variable's
+// default; absent: "" for the type's default): pass -> hook parameter -> name.
+std::map<std::string, std::map<std::string, std::string>> hook_names(const json& graph);
 
 // ---- values -----------------------------------------------------------------------------
 const VariableDecl* find_variable(const GraphFile& g, const std::string& name);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <pathlet/pass.hpp>
+#include <pathlet/shader_source.hpp>
 
 #include <map>
 #include <memory>
@@ -41,6 +42,17 @@ struct VariableDecl {
     ParamDecl decl;   // type, default, range, doc (same rules as pass parameters)
     json value;       // default or --set override, already coerced; null: its declaration is wrong
     std::string pointer;
+    std::string set_by;  // the --set that gave `value`, "" when the graph did
+};
+
+// A hook of a pass, resolved once when the graph loads (resolve_hooks): the file the graph
+// names, where it was found and the parameters it declares with @param.
+struct HookBinding {
+    HookRole role = HookRole::color;
+    std::string param;              // "color_hook"
+    std::string name;               // as the graph or --set gives it: "my_fade.glsl", or a path of the user's
+    std::string file;               // found: absolute, normalised
+    std::vector<ParamDecl> params;  // what it declares (@param), with their defaults
 };
 
 struct SizeDecl {
@@ -71,16 +83,22 @@ struct PassDecl {
     std::map<std::string, std::string> outputs;  // pin -> "resource"
     json enabled = true;                         // bool or "$variable"
     std::string pointer;
-    // How graphs that extend the pass's graph changed its params: what they were before and
-    // which keys the extending file set. Where a change replaced a hook (color_hook,
-    // width_hook), the replaced hook's parameters set before it are dropped, with a note, once
-    // the pass types are known (apply_overrides; validate_graph and compile_graph too).
-    struct ParamsChange {
-        std::string by;                 // the extending graph file
-        json before = json::object();   // params before the change
-        std::vector<std::string> keys;  // the keys it set
+    // When each parameter was last written: a layer number, counting the graph files of the
+    // `extends` chain from the deepest base (0) and then each --set. A hook's parameter written
+    // before the hook was last replaced was set for the replaced hook (resolve_hooks).
+    std::map<std::string, int> written;
+    // Each time a graph or a --set replaced one of the pass's hooks.
+    struct HookSwap {
+        std::string param;          // "color_hook"
+        int layer = 0;
+        std::string by;             // the extending graph file, or "--set ..."
+        std::string before, after;  // hook names ("" = the type's default)
     };
-    std::vector<ParamsChange> changes;
+    std::vector<HookSwap> swaps;
+    // Resolved once (resolve_hooks): the pass's hooks and its type with their parameters
+    // (null until then, and for a type the registry lacks).
+    std::vector<HookBinding> hooks;
+    std::shared_ptr<const PassTypeInfo> instance_type;
 };
 
 struct OutputDecl {
@@ -100,12 +118,19 @@ struct GraphFile {
     std::vector<OutputDecl> outputs;
     std::vector<std::string> plugin_dirs;  // "plugin_dirs": folders of plugins, resolved against the file's folder
     // The file's folder and those of the graphs it extends: hook files next to a graph are
-    // found there (after the shader path). Then the hook files the user named by path (--set,
-    // Python: apply_overrides), each an entry of its own: found by that path, and only it.
+    // found there (before the shader path).
     std::vector<std::string> dirs;
+    // Hook files the user named by path (--set, Python: Runtime::user_sets): the only paths a
+    // hook may be; a graph file names hooks by file name.
+    std::set<std::string> user_files;
     // What resolving the graph did that its author may not expect (a replaced hook's
     // parameters dropped), for the command to print as notes.
     std::vector<std::string> notes;
+    // resolve_hooks ran: every pass's hooks and instance type are known. The problems it found
+    // (a hook file missing, a bad @param line) are reported by validation, at their place.
+    bool hooks_resolved = false;
+    std::vector<Diagnostic> hook_problems;
+    int layers = 1;  // layers of the extends chain and --set so far (PassDecl::written)
     std::vector<std::string> extends;      // the chain of base graphs, nearest first (file paths)
     // Folders of plugin_dirs whose plugins were not loaded because the folder is not trusted
     // (Runtime::load_graph_plugins, validate): "unknown pass type" says so instead of guessing a typo.
@@ -143,12 +168,10 @@ struct CompiledPass {
     // declare (kept alive by CompiledGraph::instance_types).
     const PassTypeInfo* type = nullptr;
     json params;                                 // resolved: defaults + graph + variables + --set
-    // The hook files its hook parameters name, as found (next to the graph before the shader
-    // path): what its programs compile and `graph --plan` names.
-    struct HookFile {
-        std::string param, name, file;  // "color_hook", "my_fade.glsl", "/home/me/fig/my_fade.glsl"
-    };
-    std::vector<HookFile> hooks;
+    // Its hooks, as the graph resolved them (`graph --plan` names them), and where its programs
+    // find their files: its type's shader path with the graph's folders, and those hook files.
+    std::vector<HookBinding> hooks;
+    ShaderSource shaders;
     std::map<std::string, Binding> bindings;     // pin -> resource
     std::string pointer;
 };
@@ -183,7 +206,15 @@ struct CompiledGraph {
     std::vector<std::shared_ptr<const PassTypeInfo>> instance_types;
 
     int find_resource(const std::string& name) const;
+    // What a caller's name means: a resource, or PASS.PIN (the resource bound to that pin of a
+    // pass that runs). -1 with `why` saying what there is (a did-you-mean, the culled passes).
+    int resolve(const std::string& name, std::string* why = nullptr) const;
 };
+
+// Keeps resources out of the pool for the whole frame (their content is still theirs after the
+// frame: a caller reads them back) and pools the rest again. std::invalid_argument naming a
+// resource the graph lacks.
+void keep_resources(CompiledGraph& cg, const std::vector<std::string>& names);
 
 // ---- finding graphs -------------------------------------------------------------------
 
@@ -198,6 +229,11 @@ std::vector<std::string> shipped_graph_names();
 // shipped graph (with or without .json). Throws GraphNotFound before anything else is done.
 std::string find_graph_file(const std::string& arg);
 
+// Why `name` cannot be a graph's name ("" when it can): it names the graph's folder in output
+// paths ({graph}, quality --out, the output-folder record), so no '/', backslash, control
+// characters, "." or "..". The parser applies it to "name" and to a file name standing in.
+std::string graph_name_problem(const std::string& name);
+
 // ---- the steps ------------------------------------------------------------------------
 
 // Parses a graph file (comments allowed). Syntax and structure errors -> GraphError.
@@ -210,25 +246,27 @@ GraphFile parse_graph_json(const std::string& text, const std::string& path_for_
 // The JSON a graph file stands for: with the graphs it extends merged in (graph --expanded).
 json expanded_graph_json(const std::string& path);
 
-// Applies "--set name=value" / "--set pass.param=value" overrides; problems go to `diags`. A
-// hook parameter may be an absolute path only when it is one of `user_files`, the hook files
-// the user named on the command line or in Python (Runtime::user_sets); a set that replaces
-// a hook drops the replaced hook's parameters (a note in g.notes). Settles the hook swaps of
-// `extends` first (settle_hook_swaps).
+// Applies "--set name=value" / "--set pass.param=value" overrides, each a layer after the
+// graph files', then resolves the hooks (resolve_hooks); problems go to `diags`. A hook may be
+// an absolute path only when it is one of `user_files`, the hook files the user named on the
+// command line or in Python (Runtime::user_sets).
 void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
                      std::vector<Diagnostic>& diags, const std::set<std::string>& user_files = {});
 
-// Drops the parameters of hooks that graphs extending a base replaced (PassDecl::changes),
-// with a note each in g.notes; clears the changes. Passes of unknown types are left alone.
-void settle_hook_swaps(GraphFile& g, const PassRegistry& reg);
+// Resolves every pass's hooks once: finds each hook file, reads its @param declarations, makes
+// the pass's instance type, and drops the parameters set for a hook that a later graph or --set
+// replaced (a note each in g.notes), with the graph variables that fed only them. Problems go
+// to g.hook_problems. Does nothing the second time.
+void resolve_hooks(GraphFile& g, const PassRegistry& reg);
 
 // Every error at once: unknown pass type/param (did-you-mean), type/range errors, unconnected
 // required inputs, kind/format mismatches, cycles, unknown resources, two writers of one resource.
 std::vector<Diagnostic> validate_graph(const GraphFile& g, const PassRegistry& reg);
 
 // Validates, culls (with reasons), orders topologically, resolves formats and sizes for the
-// output size, computes lifetimes and pools transients. Throws GraphError.
-CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::ivec2 output_size);
+// output size, computes lifetimes and pools transients. `pixel_scale`: render pixels per picture
+// pixel (CompiledGraph::pixel_scale). Throws GraphError.
+CompiledGraph compile_graph(const GraphFile& g, const PassRegistry& reg, glm::ivec2 output_size, float pixel_scale = 1.0f);
 
 std::string graph_to_dot(const CompiledGraph& cg, const GraphFile& g);
 std::string plan_to_text(const CompiledGraph& cg);   // order, lifetimes, memory before/after pooling

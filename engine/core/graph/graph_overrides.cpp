@@ -1,15 +1,15 @@
 // apply_overrides: "--set name=value" (graph variable) and "--set pass.param=value" (one pass's
-// parameter, read by the parameter's declared type, the parameters its hook files declare
-// included). "--set pass.enabled=false" toggles a pass and "--set pass.type=TYPE" replaces its
-// type (the parameters it had stay and are validated against the new type), unless the type
-// has a parameter of that name. Overrides apply in order: a hook set first declares the
-// parameters a later --set may give, and a set that replaces a hook drops the parameters the
-// graph set for the replaced one (graph_hook_swap.cpp). A hook may be a path the user gave
-// (user_files: the command line, Python), never one an experiment file or viewer script gives.
+// parameter, read by the parameter's declared type). "--set pass.enabled=false" toggles a pass
+// and "--set pass.type=TYPE" replaces its type (the parameters it had stay and are validated
+// against the new type), unless the type has a parameter of that name. Each set is a layer after
+// the graph files', applied in order; a set that changes a hook (PASS.color_hook, or a variable
+// a hook parameter takes) is recorded as a replacement of that hook. The hooks then resolve once
+// (graph_hooks.cpp), and a set of a hook's own parameter is read against the hook in place after
+// every set. A hook may be a path the user gave (user_files: the command line, Python), never
+// one an experiment file or viewer script gives.
 #include "graph_internal.hpp"
 
 #include <algorithm>
-#include <filesystem>
 
 namespace pathlet {
 
@@ -23,47 +23,53 @@ bool parse_bool(const std::string& s, bool& out) {
     return false;
 }
 
-// A variable that pass hook parameters take ("color_hook": "$color_hook" in every variant2_*
-// graph) swaps each of those hooks as --set PASS.color_hook would: a path the user gave is on the
-// search path, a hook that cannot be used is this set's error, and the replaced hook's
-// parameters are dropped (graph_hook_swap.cpp). The variable already holds the new value.
-template <class Error>
-bool set_hook_variable(GraphFile& g, const std::string& var, const json& old, const std::string& text,
-                       const std::string& set, const PassRegistry& reg, const std::set<std::string>& user_files,
-                       const Error& error) {
-    for (PassDecl& p : g.passes) {
-        const PassTypeInfo* t = reg.find(p.type);
-        if (!t) continue;
-        for (const ParamDecl& d : t->params) {
-            if (d.hook.empty() || !p.params.contains(d.name) || !is_variable_ref(p.params[d.name]) ||
-                p.params[d.name].get<std::string>().substr(1) != var)
-                continue;
-            if (std::filesystem::path(text).is_absolute() && user_files.count(text) &&
-                std::find(g.dirs.begin(), g.dirs.end(), text) == g.dirs.end())
-                g.dirs.push_back(text);
-            PassDecl::ParamsChange change{"--set " + set, p.params, {d.name}};
-            change.before[d.name] = old;
-            std::string bad, bad_at;
-            pass_instance_type(g, p, *t, bad, bad_at);
-            if (!bad.empty()) {
-                error(p.pointer + "/params/" + pointer_escape(d.name), bad);
-                return false;
+// The hook names the passes give now: pass index -> hook parameter -> name ("" = the default).
+std::vector<std::map<std::string, std::string>> hook_names_of(const GraphFile& g) {
+    std::vector<std::map<std::string, std::string>> out;
+    for (const PassDecl& p : g.passes) {
+        auto& names = out.emplace_back();
+        for (const HookRole role : kHookRoles) {
+            const char* param = hook_role(role).param;
+            std::string name;
+            if (p.params.contains(param) && p.params[param].is_string()) {
+                name = p.params[param].get<std::string>();
+                if (is_variable_ref(p.params[param]))
+                    if (const VariableDecl* v = find_variable(g, name.substr(1)); v && v->value.is_string())
+                        name = v->value.get<std::string>();
             }
-            swap_hook_params(g, p, *t, change);
+            names[param] = name;
         }
     }
-    return true;
+    return out;
 }
+
+// The hooks a set replaced, recorded as swaps of its layer.
+void record_swaps(GraphFile& g, const std::vector<std::map<std::string, std::string>>& before, int layer,
+                  const std::string& set) {
+    const auto after = hook_names_of(g);
+    for (size_t i = 0; i < g.passes.size(); ++i)
+        for (const auto& [param, name] : after[i])
+            if (before[i].at(param) != name) g.passes[i].swaps.push_back({param, layer, "--set " + set, before[i].at(param), name});
+}
+
+// A set of a parameter no registry type declares: read once the hooks are known.
+struct HookParamSet {
+    size_t pass;
+    std::string param, text, set;
+    int layer;
+};
 
 }  // namespace
 
 void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const PassRegistry& reg,
                      std::vector<Diagnostic>& diags, const std::set<std::string>& user_files) {
-    settle_hook_swaps(g, reg);
+    g.user_files.insert(user_files.begin(), user_files.end());
+    std::vector<HookParamSet> later;
     for (const auto& set : sets) {
         auto error = [&](const std::string& ptr, const std::string& msg) {
             diags.push_back({g.path, ptr, "--set " + set + ": " + msg});
         };
+        const int layer = g.layers++;
         const size_t eq = set.find('=');
         if (eq == std::string::npos || eq == 0) {
             error("", "expected name=value (a variable) or pass.param=value");
@@ -86,9 +92,10 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
                 error(it->pointer, "variable '" + lhs + "' " + err);
                 continue;
             }
-            const json old = it->value;
+            const auto before = hook_names_of(g);
             it->value = out;
-            if (!set_hook_variable(g, lhs, old, text, set, reg, user_files, error)) it->value = old;
+            it->set_by = set;
+            record_swaps(g, before, layer, set);
             continue;
         }
 
@@ -100,8 +107,8 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
             error("/passes", "unknown pass '" + pass + "'" + did_you_mean(pass, names));
             continue;
         }
-        const PassTypeInfo* reg_type = reg.find(p->type);
-        if (param == "type" && (!reg_type || !reg_type->param("type"))) {
+        const PassTypeInfo* t = reg.find(p->type);
+        if (param == "type" && (!t || !t->param("type"))) {
             if (!reg.find(text)) {
                 error(p->pointer + "/type", "unknown pass type '" + text + "'" + did_you_mean(text, reg.names()));
                 continue;
@@ -109,17 +116,10 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
             p->type = text;
             continue;
         }
-        if (!reg_type) {
+        if (!t) {
             error(p->pointer + "/type", "pass '" + pass + "' has unknown type '" + p->type + "'");
             continue;
         }
-        std::string hook_err, hook_at;
-        const auto inst = pass_instance_type(g, *p, *reg_type, hook_err, hook_at);
-        if (!hook_err.empty()) {
-            error(hook_at, hook_err);
-            continue;
-        }
-        const PassTypeInfo* t = inst.get();
         const ParamDecl* d = t->param(param);
         if (!d && param == "enabled") {
             bool on = true;
@@ -127,12 +127,8 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
             else error(p->pointer + "/enabled", "enabled must be true or false, got '" + text + "'");
             continue;
         }
-        if (!d) {
-            std::vector<std::string> names;
-            for (const auto& x : t->params) names.push_back(x.name);
-            error(p->pointer + "/params", "unknown parameter '" + param + "' for pass type '" + t->type + "'" +
-                                              did_you_mean(param, names) +
-                                              "; its parameters: " + (names.empty() ? std::string("none") : join(names)));
+        if (!d) {  // perhaps a hook's parameter
+            later.push_back({size_t(p - g.passes.begin()), param, text, set, layer});
             continue;
         }
         json out;
@@ -140,26 +136,39 @@ void apply_overrides(GraphFile& g, const std::vector<std::string>& sets, const P
             error(p->pointer + "/params/" + pointer_escape(param), "parameter '" + param + "' " + err);
             continue;
         }
-        if (d->hook.empty()) {
-            p->params[param] = out;
-            continue;
-        }
-        // A hook file the user named by its path: on the search path as that file alone.
-        if (std::filesystem::path(text).is_absolute() && user_files.count(text) &&
-            std::find(g.dirs.begin(), g.dirs.end(), text) == g.dirs.end())
-            g.dirs.push_back(text);
-        const PassDecl::ParamsChange change{"--set " + set, p->params, {param}};
+        const auto before = hook_names_of(g);
         p->params[param] = out;
-        // A hook that cannot be used is this set's error, before any work (a bench checks its
-        // graphs and sets before the first run).
-        std::string bad, bad_at;
-        pass_instance_type(g, *p, *reg_type, bad, bad_at);
-        if (!bad.empty()) {
-            error(p->pointer + "/params/" + pointer_escape(param), bad);
-            p->params = change.before;
+        p->written[param] = layer;
+        if (d->hook) record_swaps(g, before, layer, set);
+    }
+
+    g.hooks_resolved = false;
+    resolve_hooks(g, reg);
+    for (const HookParamSet& s : later) {
+        PassDecl& p = g.passes[s.pass];
+        const PassTypeInfo& t = *p.instance_type;
+        const ParamDecl* d = t.param(s.param);
+        if (!d) {
+            // A hook that could not be read is reported at its place; its parameters are unknown.
+            if (std::any_of(g.hook_problems.begin(), g.hook_problems.end(),
+                            [&](const Diagnostic& x) { return x.pointer.rfind(p.pointer + "/", 0) == 0; }))
+                continue;
+            std::vector<std::string> names;
+            for (const auto& x : t.params) names.push_back(x.name);
+            diags.push_back({g.path, p.pointer + "/params",
+                             "--set " + s.set + ": unknown parameter '" + s.param + "' for pass type '" + t.type + "'" +
+                                 did_you_mean(s.param, names) +
+                                 "; its parameters: " + (names.empty() ? std::string("none") : join(names))});
             continue;
         }
-        swap_hook_params(g, *p, *reg_type, change);
+        json out;
+        if (std::string err = d->coerce_text(s.text, out); !err.empty()) {
+            diags.push_back({g.path, p.pointer + "/params/" + pointer_escape(s.param),
+                             "--set " + s.set + ": parameter '" + s.param + "' " + err});
+            continue;
+        }
+        p.params[s.param] = out;
+        p.written[s.param] = s.layer;
     }
 }
 

@@ -49,6 +49,28 @@ using namespace graph_detail;
 
 namespace {
 
+// Characters no name may hold, whatever it names: names become parts of file paths ({graph},
+// {output}) and of messages printed on a terminal.
+std::string unsafe_name_characters(const std::string& name, const std::string& what) {
+    for (char c : name) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '/' || c == '\\') return what + " name '" + name + "' must not contain '/' or '\\' (it is part of file paths)";
+        if (u < 0x20 || u == 0x7f) return what + " name must not contain control characters";
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string graph_name_problem(const std::string& name) {
+    if (std::string why = unsafe_name_characters(name, "graph"); !why.empty()) return why;
+    if (name == "." || name == "..")
+        return "graph name '" + name + "' would name a folder, not one of its own ({graph} in output paths)";
+    return "";
+}
+
+namespace {
+
 class Parser {
 public:
     explicit Parser(std::string file) : file_(std::move(file)) {}
@@ -86,6 +108,7 @@ public:
                 g.version = 1;
         }
         g.name = string_at(root, "name", "", "");
+        if (std::string why = graph_name_problem(g.name); !g.name.empty() && !why.empty()) error("/name", why);
         g.description = string_at(root, "description", "", "");
         if (const json* vars = object_at(root, "variables", ""))
             for (const auto& [k, v] : vars->items()) parse_variable(g, k, v);
@@ -160,6 +183,7 @@ private:
                 error(ptr, std::string(what) + " name '" + name + "' must not contain '.', '@', '$', '=' or spaces");
                 return;
             }
+        if (std::string why = unsafe_name_characters(name, what); !why.empty()) error(ptr, why);
     }
 
     // A variable whose declaration is wrong (reported) stays, without a value: what uses it is
@@ -431,22 +455,29 @@ namespace {
 // without, they are thrown (a JSON syntax error or a wrong "extends" is thrown either way).
 GraphFile parse_root(json root, const std::string& path, std::vector<Diagnostic>* diags = nullptr) {
     std::vector<std::string> dirs, chain;
-    std::vector<ExtendsChange> changes;
-    root = expand_extends(std::move(root), path, dirs, chain, &changes);
+    LayerLog log;
+    root = expand_extends(std::move(root), path, dirs, chain, &log);
     Parser p(path);
     GraphFile g = p.parse(root);
     if (!p.diags.empty() && !diags) throw GraphError(std::move(p.diags));
     if (diags) diags->insert(diags->end(), p.diags.begin(), p.diags.end());
     // No "name": the file's name (fade_v1.json is "fade_v1"), in titles, {graph} and the plan.
-    if (g.name.empty()) g.name = std::filesystem::path(path).stem().string();
+    if (g.name.empty()) {
+        g.name = std::filesystem::path(path).stem().string();
+        if (std::string why = graph_name_problem(g.name); !why.empty()) {
+            Diagnostic d{path, "", why + " (the file's name; give the graph a \"name\")"};
+            if (!diags) throw GraphError({d});
+            diags->push_back(d);
+        }
+    }
     g.dirs = std::move(dirs);
     g.extends = std::move(chain);
-    for (auto& c : changes)
-        for (auto& pass : g.passes)
-            if (pass.name == c.pass) {
-                pass.changes.push_back(std::move(c.change));
-                break;
-            }
+    g.layers = log.layers;
+    for (auto& pass : g.passes) {
+        if (const auto it = log.written.find(pass.name); it != log.written.end()) pass.written = it->second;
+        for (const auto& [name, swap] : log.swaps)
+            if (name == pass.name) pass.swaps.push_back(swap);
+    }
     return g;
 }
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 
 namespace pathlet::graph_detail {
@@ -21,6 +22,7 @@ bool same_descriptor(const PoolSlot& s, const CompiledResource& r) {
 }  // namespace
 
 void assign_slots(CompiledGraph& cg) {
+    cg.slots.clear();
     std::vector<int> order(cg.resources.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(),
@@ -57,3 +59,21 @@ void assign_slots(CompiledGraph& cg) {
 }
 
 }  // namespace pathlet::graph_detail
+
+namespace pathlet {
+
+void keep_resources(CompiledGraph& cg, const std::vector<std::string>& names) {
+    if (names.empty()) return;
+    const int last = std::max(0, int(cg.passes.size()) - 1);
+    for (const auto& n : names) {
+        std::string why;
+        const int r = cg.resolve(n, &why);
+        if (r < 0) throw std::invalid_argument(why);
+        cg.resources[size_t(r)].persistent = true;
+        cg.resources[size_t(r)].first_use = 0;
+        cg.resources[size_t(r)].last_use = last;
+    }
+    graph_detail::assign_slots(cg);
+}
+
+}  // namespace pathlet

@@ -231,13 +231,14 @@ void validate_index(const GraphIndex& idx, std::vector<Diagnostic>& diags) {
         error(g.passes[cycle.front()].pointer, "passes form a cycle: " + join(names, " -> ") +
                                                    " (use a history resource and '@prev' to read last frame's result)");
     }
+    check_agreement(idx, diags);
 }
 
 }  // namespace graph_detail
 
 std::vector<Diagnostic> validate_graph(const GraphFile& file, const PassRegistry& reg) {
-    std::optional<GraphFile> settled;
-    const GraphFile& g = settle_pending_swaps(file, reg, settled);
+    std::optional<GraphFile> resolved;
+    const GraphFile& g = with_hooks_resolved(file, reg, resolved);
     std::vector<Diagnostic> diags;
     GraphIndex idx = build_index(g, reg, diags);
     validate_index(idx, diags);

@@ -76,31 +76,3 @@ std::string resolve_enabled(const GraphFile& g, const json& enabled, bool& out) 
 }
 
 }  // namespace pathlet::graph_detail
-
-#include "hook_params.hpp"
-
-namespace pathlet::graph_detail {
-
-std::shared_ptr<const PassTypeInfo> pass_instance_type(const GraphFile& g, const PassDecl& p, const PassTypeInfo& t,
-                                                       std::string& err, std::string& err_pointer) {
-    // The hook parameters' values as written (a literal or "$variable"); absent: the default.
-    json hooks = json::object();
-    for (const ParamDecl& d : t.params) {
-        if (d.hook.empty() || !p.params.contains(d.name)) continue;
-        json v;
-        if (std::string e = resolve_param(g, d, p.params[d.name], v); !e.empty()) return {&t, [](const PassTypeInfo*) {}};
-        hooks[d.name] = v;
-    }
-    try {
-        return instance_type(t, hooks, g.dirs);
-    } catch (const HookError& e) {
-        err = e.what();
-        // At the hook parameter the graph sets, else at the type (its default hook).
-        err_pointer = p.pointer + "/type";
-        for (const ParamDecl& d : t.params)
-            if (!d.hook.empty() && p.params.contains(d.name)) err_pointer = p.pointer + "/params/" + pointer_escape(d.name);
-        return {&t, [](const PassTypeInfo*) {}};
-    }
-}
-
-}  // namespace pathlet::graph_detail

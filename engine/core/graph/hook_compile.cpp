@@ -2,50 +2,39 @@
 
 #include "graph_internal.hpp"
 #include "hook_params.hpp"
+#include "pass_bindings.hpp"
 
 #include <pathlet/lines.hpp>
 #include <pathlet/shader.hpp>
 
-#include <filesystem>
 #include <set>
 
 namespace pathlet {
 
 using namespace graph_detail;
 
-std::vector<Diagnostic> compile_hooks(const GraphFile& g, const PassRegistry& reg) {
+std::vector<Diagnostic> compile_hooks(const GraphFile& file, const PassRegistry& reg) {
+    std::optional<GraphFile> resolved;
+    const GraphFile& g = with_hooks_resolved(file, reg, resolved);
     std::vector<Diagnostic> out;
-    std::set<std::pair<std::string, std::string>> done;  // (file, role)
+    std::set<std::pair<std::string, HookRole>> done;
     for (const PassDecl& p : g.passes) {
         const PassTypeInfo* t = reg.find(p.type);
         if (!t) continue;  // validate_graph names it
-        std::vector<std::string> defines;  // as the executor gives them: buffer pins in declaration order
-        for (const PinDecl& pin : t->pins)
-            if (pin.kind == PinKind::Buffer) defines.push_back(binding_define(pin.name) + " " + std::to_string(defines.size()));
-        for (const ParamDecl& d : t->params) {
-            if (d.hook.empty()) continue;
-            json value = d.def;
-            if (p.params.contains(d.name) && !resolve_param(g, d, p.params[d.name], value).empty()) continue;
-            if (!value.is_string() || value.get<std::string>().empty()) continue;  // the kit's default
-            std::string file;
+        for (const HookBinding& h : p.hooks) {
+            if (!done.insert({h.file, h.role}).second) continue;
+            // As the pass's programs see it: the shader path, the pass's binding defines.
+            const ShaderSource source = pass_shaders(*t, g.dirs, {});
+            std::vector<std::string> defines = PassBindings(*t).defines();
+            if (*hook_role(h.role).defines) defines.push_back(hook_role(h.role).defines);
             try {
-                file = std::filesystem::absolute(find_hook_file(value.get<std::string>(), *t, g.dirs)).lexically_normal();
-            } catch (const HookError&) {
-                continue;  // validate_graph names a missing hook
-            }
-            if (!done.insert({file, d.hook}).second) continue;
-            std::vector<std::string> dirs = hook_search_path(*t, g.dirs);
-            dirs.push_back(file);  // found by its path, as the executor finds it
-            std::vector<std::string> defs = defines;
-            if (d.hook == "width") defs.push_back("LINE_WIDTH_HOOKED");
-            try {
-                ShaderProgram::from_files({lines::hook_entry(file, d.hook)}, dirs, defs);
+                ShaderProgram::build({lines::hook_stage(source, h.role, h.file)}, source, defines);
             } catch (const ShaderError& e) {
                 // Alone, a hook has no main(): the link fails once the stage has compiled.
                 if (std::string(e.what()).rfind("GLSL link error", 0) == 0) continue;
-                const std::string at = p.params.contains(d.name) ? p.pointer + "/params/" + pointer_escape(d.name)
-                                                                 : p.pointer + "/type";
-                out.push_back({g.path, at, d.name + " " + file + " does not compile: " + e.what()});
+                const std::string at =
+                    p.params.contains(h.param) ? p.pointer + "/params/" + pointer_escape(h.param) : p.pointer + "/type";
+                out.push_back({g.path, at, h.param + " " + h.file + " does not compile: " + e.what()});
             }
         }
     }

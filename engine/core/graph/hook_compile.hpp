@@ -1,5 +1,5 @@
 // `pathlet validate` compiles every hook a graph reaches: each hook file of each pass, alone, as
-// the stage its role needs after the line kit's definitions (lines::hook_entry), with the pass's
+// the stage its role needs after the line kit's definitions (lines::hook_stage), with the pass's
 // buffer-pin defines. A compile error names the hook's file and line (ShaderProgram maps them).
 // Needs a current GL context (the headless one: the driver's own compiler, nothing emulated).
 #pragma once

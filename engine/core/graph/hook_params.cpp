@@ -3,7 +3,7 @@
 #include "graph_internal.hpp"
 #include "plugin_host.hpp"
 
-#include <pathlet/shader.hpp>
+#include <pathlet/shader_source.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -11,10 +11,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
-#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -41,20 +39,16 @@ std::vector<std::string> shader_search_path(const PassTypeInfo& type, const std:
     return dirs;
 }
 
-std::vector<std::string> hook_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs) {
-    std::vector<std::string> dirs = graph_dirs;
-    for (auto& d : shader_search_path(type, {}))
-        if (std::find(dirs.begin(), dirs.end(), d) == dirs.end()) dirs.push_back(std::move(d));
-    return dirs;
+ShaderSource pass_shaders(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs,
+                          const std::vector<HookBinding>& hooks) {
+    std::map<HookRole, std::string> files;
+    for (const auto& h : hooks) files[h.role] = h.file;
+    return ShaderSource(shader_search_path(type, graph_dirs), std::move(files));
 }
 
-bool is_chosen_file(const std::string& name, const std::vector<std::string>& dirs) {
-    return fs::path(name).is_absolute() && std::find(dirs.begin(), dirs.end(), name) != dirs.end();
-}
-
-std::string check_hook_name(const std::string& name, const std::vector<std::string>& graph_dirs) {
+std::string check_hook_name(const std::string& name, const std::set<std::string>& user_files) {
     if (name.empty()) return "";
-    if (!is_chosen_file(name, graph_dirs) &&
+    if (!(fs::path(name).is_absolute() && user_files.count(name)) &&
         (name.find('/') != std::string::npos || name.find('\\') != std::string::npos || name.find("..") != std::string::npos ||
          name[0] == '.'))
         return "a hook a graph names is a file name on the shader path or next to the graph, without folders or '..' "
@@ -65,59 +59,6 @@ std::string check_hook_name(const std::string& name, const std::vector<std::stri
 }
 
 namespace {
-
-struct Source {
-    std::string file;  // as found
-    std::string text;
-};
-
-std::string find_file(const std::string& name, const std::vector<std::string>& dirs) {
-    if (is_chosen_file(name, dirs)) {  // a path the user gave (check_hook_name refused any other)
-        std::error_code ec;
-        if (fs::is_regular_file(name, ec)) return name;
-        throw HookError("hook file '" + name + "' not found");
-    }
-    for (const auto& d : dirs) {
-        const fs::path p = fs::path(d) / name;
-        std::error_code ec;
-        if (fs::is_regular_file(p, ec)) return p.string();
-    }
-    std::string msg = "hook file '" + name + "' not found; searched:";
-    for (const auto& d : dirs) msg += "\n  " + d;
-    throw HookError(msg);
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw HookError(path + ": cannot read");
-    std::ostringstream s;
-    s << in.rdbuf();
-    if (s.str().size() > (1u << 20)) throw HookError(path + ": larger than 1 MiB; not a hook");
-    return s.str();
-}
-
-// The hook file and every file it includes (each once), in include order.
-void collect(const std::string& path, const std::vector<std::string>& dirs, std::vector<Source>& out,
-             std::set<std::string>& seen, int depth) {
-    if (depth > 16) throw HookError(path + ": #include nested too deeply (a cycle?)");
-    if (!seen.insert(fs::weakly_canonical(path).string()).second) return;
-    out.push_back({path, read_text(path)});
-    std::istringstream in(out.back().text);
-    std::string line;
-    for (int n = 1; std::getline(in, line); ++n) {
-        const std::string name = include_target(line);  // the includes the compiler inlines
-        if (name.empty()) continue;
-        std::vector<std::string> search{fs::path(path).parent_path().string()};
-        search.insert(search.end(), dirs.begin(), dirs.end());
-        std::string inc;
-        try {
-            inc = find_shader_file(name, search);  // and found as it finds them
-        } catch (const ShaderError& e) {
-            throw HookError(path + ":" + std::to_string(n) + ": #include \"" + name + "\": " + e.what());
-        }
-        collect(inc, dirs, out, seen, depth + 1);
-    }
-}
 
 // The text after "@param": tokens of the little grammar in hook_params.hpp.
 class ParamLine {
@@ -239,94 +180,118 @@ private:
     size_t i_ = 0;
 };
 
-const char* hook_function(const std::string& role) {
-    return role == "width" ? "float line_width_hook(LinePoint p)" : "vec4 line_color_hook(vec4 rgba, LinePoint p)";
-}
-
-// The hook's function must be defined (not only declared) in the file or what it includes.
-void check_function(const std::string& name, const std::string& role, const std::vector<Source>& sources) {
-    const std::string fn = role == "width" ? "line_width_hook" : "line_color_hook";
-    const std::regex def_re("\\b" + fn + R"(\s*\([^;{)]*\)\s*\{)");
+// The role's function must be defined (not only declared) in the file or what it includes.
+void check_function(HookRole role, const std::vector<ShaderSource::Text>& sources) {
+    const HookRoleInfo& r = hook_role(role);
+    const std::regex def_re(std::string("\\b") + r.function + R"(\s*\([^;{)]*\)\s*\{)");
     for (const auto& s : sources)
         if (std::regex_search(s.text, def_re)) return;
     // Name what it defines instead, with its line: a typo is the usual cause.
     static const std::regex any_def(R"(\b(\w+)\s*\([^;{)]*\)\s*\{)");
     std::vector<std::string> defined;
     std::map<std::string, int> line_of;
-    const Source& own = sources.front();
+    const auto& own = sources.front();
     for (auto it = std::sregex_iterator(own.text.begin(), own.text.end(), any_def); it != std::sregex_iterator(); ++it) {
         const std::string f = (*it)[1].str();
         if (f == "if" || f == "for" || f == "while" || f == "switch" || f == "main") continue;
         defined.push_back(f);
         line_of.emplace(f, 1 + int(std::count(own.text.begin(), own.text.begin() + it->position(), '\n')));
     }
-    const std::string near = text::closest_match(fn, defined);
-    throw HookError(own.file + ":" + std::to_string(near.empty() ? 1 : line_of[near]) + ": a " +
-                    (role == "width" ? "width" : "colour") + " hook defines " + hook_function(role) +
+    const std::string near = text::closest_match(r.function, defined);
+    throw HookError(own.path + ":" + std::to_string(near.empty() ? 1 : line_of[near]) + ": a " + r.noun +
+                    " hook defines " + r.signature +
                     (near.empty() ? "; this file defines no such function" : "; this file defines '" + near + "' instead"));
 }
 
-}  // namespace
-
-std::vector<ParamDecl> hook_params(const std::string& name, const std::string& role,
-                                   const std::vector<std::string>& dirs) {
-    std::vector<Source> sources;
-    std::set<std::string> seen;
-    collect(find_file(name, dirs), dirs, sources, seen, 0);
-    check_function(name, role, sources);
+// The parameters a hook file and what it includes declare with @param, in file order.
+std::vector<ParamDecl> scan_params(const std::vector<ShaderSource::Text>& sources) {
     static const std::regex decl_re(R"(^\s*uniform\s+(float|int|bool|vec3)\s+u_(\w+)\s*;\s*//\s*@param\b(.*)$)");
+    // Code lines whose comment starts with @param (prose about @param in comments is no declaration).
+    static const std::regex marker(R"(^\s*[^/\s*].*//\s*@param\b)");
     std::vector<ParamDecl> out;
     for (const auto& s : sources) {
         std::istringstream in(s.text);
         std::string line;
         for (int n = 1; std::getline(in, line); ++n) {
-            // Code lines whose comment starts with @param (prose about @param in comments is no declaration).
-            static const std::regex marker(R"(^\s*[^/\s*].*//\s*@param\b)");
             if (line.find("@param") == std::string::npos || !std::regex_search(line, marker)) continue;
-            const std::string where = fs::path(s.file).filename().string() + ":" + std::to_string(n);
+            const std::string where = s.path + ":" + std::to_string(n);
             std::smatch m;
             if (!std::regex_match(line, m, decl_re))
-                throw HookError(s.file + ":" + std::to_string(n) +
-                                ": @param belongs after 'uniform float|int|bool|vec3 u_<name>;' on the same line");
-            ParamDecl d = ParamLine(m[3].str(), s.file + ":" + std::to_string(n)).parse(m[1].str(), m[2].str());
-            d.origin = where;
+                throw HookError(where + ": @param belongs after 'uniform float|int|bool|vec3 u_<name>;' on the same line");
+            ParamDecl d = ParamLine(m[3].str(), where).parse(m[1].str(), m[2].str());
+            d.origin = fs::path(s.path).filename().string() + ":" + std::to_string(n);
             out.push_back(std::move(d));
         }
     }
     return out;
 }
 
-std::string find_hook_file(const std::string& name, const PassTypeInfo& type, const std::vector<std::string>& graph_dirs) {
-    return find_file(name, hook_search_path(type, graph_dirs));
+}  // namespace
+
+HookBinding bind_hook(const PassTypeInfo& type, HookRole role, const std::string& name,
+                      const std::vector<std::string>& graph_dirs, const std::set<std::string>& user_files) {
+    const HookRoleInfo& r = hook_role(role);
+    if (std::string err = check_hook_name(name, user_files); !err.empty())
+        throw HookError(std::string(r.param) + " '" + name + "': " + err);
+    HookBinding b{role, r.param, name, "", {}};
+    std::error_code ec;
+    if (fs::path(name).is_absolute()) {  // a file the user named (check_hook_name refused any other path)
+        if (!fs::is_regular_file(name, ec)) throw HookError("hook file '" + name + "' not found");
+        b.file = name;
+    } else {
+        // Next to the graph first, then on the shader path.
+        std::vector<std::string> dirs = graph_dirs;
+        for (auto& d : shader_search_path(type, {}))
+            if (std::find(dirs.begin(), dirs.end(), d) == dirs.end()) dirs.push_back(std::move(d));
+        try {
+            b.file = ShaderSource(dirs).find(name);
+        } catch (const ShaderError&) {
+            std::string msg = "hook file '" + name + "' not found; searched:";
+            for (const auto& d : dirs) msg += "\n  " + d;
+            throw HookError(msg);
+        }
+    }
+    b.file = fs::absolute(b.file).lexically_normal().string();
+    try {
+        const auto sources = ShaderSource(shader_search_path(type, graph_dirs)).with_includes(b.file);
+        check_function(role, sources);
+        b.params = scan_params(sources);
+    } catch (const ShaderError& e) {
+        throw HookError(e.what());
+    }
+    return b;
 }
 
-std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, const json& params,
-                                                  const std::vector<std::string>& graph_dirs) {
+std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, const std::vector<HookBinding>& hooks) {
     std::vector<ParamDecl> extra;
-    std::vector<std::string> dirs;
-    for (const ParamDecl& hook : type.params) {
-        if (hook.hook.empty()) continue;
-        const auto it = params.find(hook.name);
-        const std::string file = it != params.end() && it->is_string() ? it->get<std::string>() : hook.def.get<std::string>();
-        if (file.empty()) continue;  // the kit's default hook: no parameters
-        if (std::string err = check_hook_name(file, graph_dirs); !err.empty())
-            throw HookError(hook.name + " '" + file + "': " + err);
-        if (dirs.empty()) dirs = hook_search_path(type, graph_dirs);
-        for (ParamDecl& d : hook_params(file, hook.hook, dirs)) {
+    for (const HookBinding& h : hooks) {
+        for (const ParamDecl& d : h.params) {
             if (const ParamDecl* clash = type.param(d.name))
                 throw HookError(d.origin + ": parameter '" + d.name + "' is already one of pass type '" + type.type +
                                 "'s (" + clash->doc.substr(0, 40) + "...); name the uniform differently");
             const auto same = std::find_if(extra.begin(), extra.end(), [&](const ParamDecl& e) { return e.name == d.name; });
-            if (same == extra.end()) extra.push_back(std::move(d));
+            if (same == extra.end()) extra.push_back(d);
             else if (same->origin != d.origin)  // both hooks include one file: the same declaration
-                throw HookError(d.origin + ": parameter '" + d.name + "' is declared again (first at " + same->origin +
-                                ")");
+                throw HookError(d.origin + ": parameter '" + d.name + "' is declared again (first at " + same->origin + ")");
         }
     }
     if (extra.empty()) return std::shared_ptr<const PassTypeInfo>(&type, [](const PassTypeInfo*) {});
     auto t = std::make_shared<PassTypeInfo>(type);
     for (auto& d : extra) t->params.push_back(std::move(d));
     return t;
+}
+
+std::shared_ptr<const PassTypeInfo> instance_type_with(const PassTypeInfo& type,
+                                                       const std::map<HookRole, std::string>& names,
+                                                       const std::set<std::string>& user_files) {
+    std::vector<HookBinding> hooks;
+    for (const ParamDecl& d : type.params) {
+        if (!d.hook) continue;
+        const auto given = names.find(*d.hook);
+        const std::string name = given != names.end() ? given->second : d.def.get<std::string>();
+        if (!name.empty()) hooks.push_back(bind_hook(type, *d.hook, name, {}, user_files));
+    }
+    return instance_type(type, hooks);
 }
 
 }  // namespace pathlet

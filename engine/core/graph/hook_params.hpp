@@ -16,9 +16,13 @@
 // Pure text: no GL, so `pathlet validate` and the graph tests need no context.
 #pragma once
 
+#include "graph_model.hpp"
+
 #include <pathlet/pass.hpp>
 
+#include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,31 +36,35 @@ struct HookError : std::runtime_error {
 
 // Where a pass type's shaders are found, in order: PATHLET_SHADER_PATH, the plugin's own
 // shader folder, the shared shaders; then `graph_dirs` (the graph file's folder and those of
-// the graphs it extends: hook files next to the graph; and hook files the user named by path,
-// GraphFile::dirs).
+// the graphs it extends).
 std::vector<std::string> shader_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
 
-// Where a pass's hook files are found, in order: `graph_dirs` first (a hook next to the graph
-// wins over a shipped file of the same name: the graph's folder is one the user chose), then
-// the shader path. Scanning for @param, `graph --plan` and the programs all find hooks here.
-std::vector<std::string> hook_search_path(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
-// The file hook `name` (a hook parameter's value) is, on hook_search_path. Throws HookError.
-std::string find_hook_file(const std::string& name, const PassTypeInfo& type, const std::vector<std::string>& graph_dirs);
+// Where a pass's programs find their files: shader_search_path, and its resolved hook files.
+ShaderSource pass_shaders(const PassTypeInfo& type, const std::vector<std::string>& graph_dirs,
+                          const std::vector<HookBinding>& hooks);
 
 // A hook name as a graph may give it: a plain file name ending in .frag, .geom or .glsl, found
-// on the shader path (no folders, no '..'), or an absolute path that is itself an entry of
-// `graph_dirs` (a file the user named: --set, Python). Returns "" or what is wrong with it.
-std::string check_hook_name(const std::string& name, const std::vector<std::string>& graph_dirs = {});
+// next to the graph or on the shader path (no folders, no '..'), or an absolute path that is one
+// of `user_files` (a file the user named: --set, Python). Returns "" or what is wrong with it.
+std::string check_hook_name(const std::string& name, const std::set<std::string>& user_files = {});
 
-// The parameters a hook file (and what it includes) declares with @param. `role` is "color"
-// or "width": the file must define that hook's function. Throws HookError naming file and line.
-std::vector<ParamDecl> hook_params(const std::string& name, const std::string& role,
-                                   const std::vector<std::string>& dirs);
+// A hook resolved: `name` (as the graph gives it) found — a file of the user's by its path,
+// else next to the graph first (a folder the user chose wins over a shipped file of the same
+// name), then on the type's shader path — and read once for the parameters it (and what it
+// includes) declares with @param. The file must define the role's function. Throws HookError
+// naming the file and line.
+HookBinding bind_hook(const PassTypeInfo& type, HookRole role, const std::string& name,
+                      const std::vector<std::string>& graph_dirs, const std::set<std::string>& user_files = {});
 
-// The type of one pass instance: `type` plus the parameters of the hooks `params` names
-// (values of the type's hook parameters; absent ones take their defaults). The type itself
-// when its hooks declare nothing. Throws HookError.
-std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, const json& params,
-                                                  const std::vector<std::string>& graph_dirs);
+// The type of one pass instance: `type` plus the parameters its hooks declare (the type itself
+// when they declare none). Throws HookError for a parameter that clashes with the type's or is
+// declared by both hooks differently.
+std::shared_ptr<const PassTypeInfo> instance_type(const PassTypeInfo& type, const std::vector<HookBinding>& hooks);
+
+// The type with its hooks bound: the names given by role, the type's defaults for the others
+// (no graph: the shader path only). For `passes --describe`. Throws HookError.
+std::shared_ptr<const PassTypeInfo> instance_type_with(const PassTypeInfo& type,
+                                                       const std::map<HookRole, std::string>& names = {},
+                                                       const std::set<std::string>& user_files = {});
 
 }  // namespace pathlet

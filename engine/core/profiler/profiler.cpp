@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <stdexcept>
 
 namespace pathlet {
@@ -20,13 +21,21 @@ double steady_ms() {
     return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
 }
 
+// CPU time of every thread of the process (llvmpipe rasterizes on its own threads).
+double process_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) / 1e6;
+}
+
 }  // namespace
 
 TimingBackend parse_timing_backend(const std::string& text) {
     if (text == "auto") return TimingBackend::Auto;
     if (text == "gpu") return TimingBackend::GlTimestamp;
     if (text == "finish") return TimingBackend::CpuFinish;
-    throw std::invalid_argument("unknown timing backend '" + text + "' (expected auto, gpu or finish)");
+    if (text == "cpu") return TimingBackend::CpuTime;
+    throw std::invalid_argument("unknown timing backend '" + text + "' (expected auto, gpu, finish or cpu)");
 }
 
 const char* to_string(TimingBackend b) {
@@ -34,6 +43,7 @@ const char* to_string(TimingBackend b) {
         case TimingBackend::Auto: return "auto";
         case TimingBackend::GlTimestamp: return "gpu";
         case TimingBackend::CpuFinish: return "finish";
+        case TimingBackend::CpuTime: return "cpu";
     }
     return "?";
 }
@@ -72,6 +82,7 @@ void Profiler::init(TimingBackend requested, const std::string& gl_renderer) {
     }
 
     epoch_ms_ = clock_ ? clock_() : steady_ms();
+    cpu_epoch_ms_ = process_cpu_ms();
     if (backend_ == TimingBackend::GlTimestamp) {
         description_ = "GL_TIMESTAMP queries (read when available)";
         if (!software.empty())
@@ -80,6 +91,9 @@ void Profiler::init(TimingBackend requested, const std::string& gl_renderer) {
         GLint64 gl_now = 0;
         glGetInteger64v(GL_TIMESTAMP, &gl_now);
         gl_to_cpu_ms_ = now() - double(gl_now) / 1e6;
+    } else if (backend_ == TimingBackend::CpuTime) {
+        description_ = "glFinish-bracketed process CPU time (every thread's; not the wall clock";
+        description_ += software.empty() ? ", and no measure of a GPU's work)" : ")";
     } else {
         description_ = "glFinish-bracketed CPU clock";
         if (!software.empty())
@@ -91,6 +105,10 @@ void Profiler::init(TimingBackend requested, const std::string& gl_renderer) {
 
 double Profiler::now() const { return (clock_ ? clock_() : steady_ms()) - epoch_ms_; }
 
+double Profiler::measure() const {
+    return backend_ == TimingBackend::CpuTime && !clock_ ? process_cpu_ms() - cpu_epoch_ms_ : now();
+}
+
 int Profiler::pass_id(const std::string& name) {
     auto [it, added] = pass_ids_.try_emplace(name, int(pass_names_.size()));
     if (added) {
@@ -101,7 +119,7 @@ int Profiler::pass_id(const std::string& name) {
 }
 
 void Profiler::sync_point() {
-    if (backend_ == TimingBackend::CpuFinish) glFinish();
+    if (backend_ != TimingBackend::GlTimestamp) glFinish();
 }
 
 size_t Profiler::stamp() {
@@ -147,7 +165,7 @@ void Profiler::begin_frame(uint64_t index) {
         sync_point();  // earlier work must not be billed to this frame
     }
     f.cpu.begin = now();
-    f.gpu.begin = f.cpu.begin;
+    f.gpu.begin = measure();
     frames_.push_back(std::move(f));
     in_frame_ = true;
 }
@@ -167,7 +185,7 @@ void Profiler::end_frame() {
         glFlush();
     } else {
         sync_point();
-        f.gpu.end = now();
+        f.gpu.end = measure();
         f.gpu.valid = true;
     }
     in_frame_ = false;
@@ -183,7 +201,7 @@ void Profiler::begin_pass(const std::string& name) {
     else
         sync_point();
     s.cpu.begin = now();
-    s.gpu.begin = s.cpu.begin;
+    s.gpu.begin = measure();
     FrameRecord& f = frames_.back();
     open_passes_.push_back(f.passes.size());
     f.passes.push_back(s);
@@ -200,7 +218,7 @@ void Profiler::end_pass() {
         current().pass_stamps[i][1] = stamp();
     } else {
         sync_point();
-        s.gpu.end = now();
+        s.gpu.end = measure();
         s.gpu.valid = true;
     }
 }

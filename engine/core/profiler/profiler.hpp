@@ -4,6 +4,9 @@
 //    late under PATHLET_SIMULATE_GPU_LATENCY). No frame is dropped. Right for real GPUs.
 //  * CpuFinish: glFinish() then the steady clock at every boundary. Serialises the pipeline,
 //    but it is the only honest number on llvmpipe, whose timer queries miss rasterisation.
+//  * CpuTime: glFinish() then the process's CPU time (every thread's) at every boundary: what
+//    llvmpipe's work costs, whatever else a busy machine runs (a pass's wall clock there grows
+//    with the load). Says nothing of a GPU's work. scripts/perf-ab.sh times llvmpipe with it.
 // CPU-side (command recording) time per pass is recorded either way, without any finish.
 #pragma once
 
@@ -21,11 +24,11 @@
 
 namespace pathlet {
 
-enum class TimingBackend { Auto, GlTimestamp, CpuFinish };
+enum class TimingBackend { Auto, GlTimestamp, CpuFinish, CpuTime };
 
-// "auto" | "gpu" | "finish"; throws std::invalid_argument naming the accepted words.
+// "auto" | "gpu" | "finish" | "cpu"; throws std::invalid_argument naming the accepted words.
 TimingBackend parse_timing_backend(const std::string& text);
-const char* to_string(TimingBackend b);  // "auto" | "gpu" | "finish"
+const char* to_string(TimingBackend b);  // "auto" | "gpu" | "finish" | "cpu"
 
 // True for renderers whose timer queries cannot be trusted (llvmpipe, softpipe, SwiftShader).
 bool is_software_renderer(const std::string& gl_renderer);
@@ -138,8 +141,9 @@ private:
     static constexpr size_t kMaxInFlight = 64;
 
     double now() const;
+    double measure() const;            // the backend's clock: now(), or the process's CPU time (CpuTime)
     int pass_id(const std::string& name);
-    void sync_point();                 // glFinish for CpuFinish
+    void sync_point();                 // glFinish for CpuFinish and CpuTime
     size_t stamp();                    // glQueryCounter for GlTimestamp; returns query position
     bool try_collect(InFlight& slot, bool wait);  // true when collected
     InFlight& current() { return in_flight_.back(); }
@@ -153,7 +157,7 @@ private:
     double wall_end_ms_ = 0;        // when flush() saw every recorded frame done
     size_t wall_end_frames_ = 0;    // frames_.size() then
     std::function<double()> clock_;
-    double epoch_ms_ = 0;
+    double epoch_ms_ = 0, cpu_epoch_ms_ = 0;
     double gl_to_cpu_ms_ = 0;  // added to GL timestamps (ms) to land on the profiler clock
 
     std::vector<std::string> pass_names_;

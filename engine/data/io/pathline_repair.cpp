@@ -1,4 +1,4 @@
-#include "limits.hpp"
+#include "util/input_limits.hpp"
 #include "units.hpp"
 #include "raw_polylines.hpp"
 
@@ -164,6 +164,14 @@ std::string short_number(double v) {
     return b;
 }
 
+// The unit of a time derived from length over speed: mm over mm/s is s; any other pairing
+// leaves it unknown.
+std::string derived_time_unit(const Units& u) {
+    if (u.length.empty() || u.velocity != u.length + "/s") return "";
+    return "s";
+}
+
+// What the repair dropped, reordered or split, for the report's warnings.
 struct Counts {
     size_t nonfinite_points = 0, nonfinite_lines = 0, split_extra = 0, outlier_points = 0;
     size_t dup_points = 0, dup_lines = 0, equal_time_points = 0;
@@ -189,191 +197,271 @@ bool is_clean(const Pathlines& pl, float eps2) {
     return expect == pl.position.size();
 }
 
-}  // namespace
+// One repair of a pathline set, in stage order: check the sizes, measure the data's extent,
+// keep each line's usable, distinct, time-ordered points (the pieces of a line between dropped
+// points become lines of their own), say what was dropped, then derive what the file lacks:
+// time (streamlines: along the arc length; else from the speed) and velocity.
+class Repair {
+public:
+    Repair(Pathlines& pl, LoadReport& report, const std::string& file)
+        : pl_(pl), warnings_(report.warnings), file_(file), has_time_(!pl.time.empty()), has_vel_(!pl.velocity.empty()) {}
 
-void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file) {
-    if (pl.lines.empty()) {  // nothing drawable; callers have already warned
-        pl = Pathlines{};
-        return;
+    void run() {
+        if (pl_.lines.empty()) {  // nothing drawable; callers have already warned
+            pl_ = Pathlines{};
+            return;
+        }
+        check_sizes();
+        measure_extent();
+        if (is_clean(pl_, eps2_)) return;
+        start_output();
+        for (const LineRange& r : pl_.lines) keep_usable_pieces(r);
+        report_drops();
+        out_.units = pl_.units;
+        if (!has_time_ && !has_vel_) {
+            pseudo_time_along_arc();
+            tangent_velocity();
+        } else if (!has_time_) {
+            time_from_speed();
+        }
+        if (!has_vel_ && !out_.timeless) velocity_from_differences();
+        if (out_.lines.empty()) warnings_.push_back("no drawable lines remain after repair: empty pathline set");
+        pl_ = std::move(out_);
     }
-    const bool has_time = !pl.time.empty(), has_vel = !pl.velocity.empty();
-    if ((has_time && pl.time.size() != pl.position.size()) || (has_vel && pl.velocity.size() != pl.position.size()))
-        fail_at(file, "byte 0", "time/velocity sizes disagree with the point count");
-    for (const PointArray& a : pl.arrays)
-        if (a.values.size() != pl.position.size())
-            fail_at(file, "byte 0", "point array '" + a.name + "' size disagrees with the point count");
-    for (auto& r : pl.lines)
-        if (uint64_t(r.first) + r.count > pl.position.size())
-            fail_at(file, "byte 0", "line range beyond the point count");
+
+private:
+    void check_sizes() const {
+        if ((has_time_ && pl_.time.size() != pl_.position.size()) || (has_vel_ && pl_.velocity.size() != pl_.position.size()))
+            fail_at(file_, "byte 0", "time/velocity sizes disagree with the point count");
+        for (const PointArray& a : pl_.arrays)
+            if (a.values.size() != pl_.position.size())
+                fail_at(file_, "byte 0", "point array '" + a.name + "' size disagrees with the point count");
+        for (auto& r : pl_.lines)
+            if (uint64_t(r.first) + r.count > pl_.position.size())
+                fail_at(file_, "byte 0", "line range beyond the point count");
+    }
 
     // Zero-length threshold relative to the data extent: a millionth of the diagonal.
     // Over usable points only, in double: outliers are dropped below, not measured.
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const auto& p : pl.position)
-        if (usable(p)) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
-    double diag = hi.x >= lo.x ? glm::length(hi - lo) : 0.0;
-    float eps = float(1e-6 * diag);
-    float eps2 = eps * eps;
-    if (is_clean(pl, eps2)) return;
+    void measure_extent() {
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const auto& p : pl_.position)
+            if (usable(p)) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+        diag_ = hi.x >= lo.x ? glm::length(hi - lo) : 0.0;
+        const float eps = float(1e-6 * diag_);
+        eps2_ = eps * eps;
+    }
 
-    Counts c;
-    Pathlines out;
-    for (const PointArray& a : pl.arrays) out.arrays.push_back({a.name, {}});
-    out.position.reserve(pl.position.size());
-    if (has_time) out.time.reserve(pl.time.size());
-    if (has_vel) out.velocity.reserve(pl.velocity.size());
-    std::vector<uint32_t> seg;
+    void start_output() {
+        for (const PointArray& a : pl_.arrays) out_.arrays.push_back({a.name, {}});
+        out_.position.reserve(pl_.position.size());
+        if (has_time_) out_.time.reserve(pl_.time.size());
+        if (has_vel_) out_.velocity.reserve(pl_.velocity.size());
+    }
 
-    auto flush = [&](bool& line_had_dup) {
-        if (has_time && seg.size() > 1) {
-            bool inc = true, dec = true;
-            for (size_t i = 1; i < seg.size(); ++i) {
-                if (pl.time[seg[i]] < pl.time[seg[i - 1]]) inc = false;
-                if (pl.time[seg[i]] > pl.time[seg[i - 1]]) dec = false;
-            }
-            if (!inc && dec) { std::reverse(seg.begin(), seg.end()); ++c.reversed; }
-            else if (!inc) {
-                std::stable_sort(seg.begin(), seg.end(), [&](uint32_t a, uint32_t b2) { return pl.time[a] < pl.time[b2]; });
-                ++c.sorted;
-            }
-        }
-        size_t first = out.position.size();
-        for (size_t i = 0; i < seg.size(); ++i) {
-            uint32_t k = seg[i];
-            if (out.position.size() > first) {
-                size_t last = out.position.size() - 1;
-                glm::vec3 d = pl.position[k] - out.position[last];
-                if (glm::dot(d, d) <= eps2) { ++c.dup_points; line_had_dup = true; continue; }
-                if (has_time && !(pl.time[k] > out.time[last])) { ++c.equal_time_points; continue; }
-            }
-            out.position.push_back(pl.position[k]);
-            if (has_time) out.time.push_back(pl.time[k]);
-            if (has_vel) out.velocity.push_back(pl.velocity[k]);
-            for (size_t a = 0; a < pl.arrays.size(); ++a) out.arrays[a].values.push_back(pl.arrays[a].values[k]);
-        }
-        size_t n = out.position.size() - first;
-        if (n < 2) {
-            if (!seg.empty()) { ++c.short_lines; c.short_points += n; }
-            out.position.resize(first);
-            if (has_time) out.time.resize(first);
-            if (has_vel) out.velocity.resize(first);
-            for (PointArray& a : out.arrays) a.values.resize(first);
-        } else {
-            out.lines.push_back({uint32_t(first), uint32_t(n)});
-        }
-        seg.clear();
-    };
+    bool usable_point(uint32_t k) const {
+        return usable(pl_.position[k]) && (!has_time_ || std::isfinite(pl_.time[k])) && (!has_vel_ || finite3(pl_.velocity[k]));
+    }
 
-    for (auto& r : pl.lines) {
+    // One line of the input: its runs of usable points, each taken as a line of its own.
+    void keep_usable_pieces(const LineRange& r) {
         bool had_bad = false, had_dup = false;
         size_t pieces = 0;
         for (uint32_t k = r.first; k < r.first + r.count; ++k) {
-            bool ok = usable(pl.position[k]) && (!has_time || std::isfinite(pl.time[k])) && (!has_vel || finite3(pl.velocity[k]));
-            if (ok) { seg.push_back(k); continue; }
-            if (finite3(pl.position[k]) && !usable(pl.position[k])) ++c.outlier_points;  // dropped alike, said apart
-            else ++c.nonfinite_points;
+            if (usable_point(k)) {
+                piece_.push_back(k);
+                continue;
+            }
+            if (finite3(pl_.position[k]) && !usable(pl_.position[k])) ++c_.outlier_points;  // dropped alike, said apart
+            else ++c_.nonfinite_points;
             had_bad = true;
-            if (!seg.empty()) { flush(had_dup); ++pieces; }
+            if (!piece_.empty()) {
+                take_piece(had_dup);
+                ++pieces;
+            }
         }
-        if (!seg.empty()) { flush(had_dup); ++pieces; }
-        else if (r.count < 2 && !had_bad) { ++c.short_lines; c.short_points += r.count; }
-        if (had_bad) { ++c.nonfinite_lines; if (pieces > 1) c.split_extra += pieces - 1; }
-        if (had_dup) ++c.dup_lines;
+        if (!piece_.empty()) {
+            take_piece(had_dup);
+            ++pieces;
+        } else if (r.count < 2 && !had_bad) {
+            ++c_.short_lines;
+            c_.short_points += r.count;
+        }
+        if (had_bad) {
+            ++c_.nonfinite_lines;
+            if (pieces > 1) c_.split_extra += pieces - 1;
+        }
+        if (had_dup) ++c_.dup_lines;
     }
 
-    auto& w = report.warnings;
-    if (c.nonfinite_points)
-        w.push_back("dropped " + std::to_string(c.nonfinite_points) + " non-finite (NaN/inf) points in " +
-                    std::to_string(c.nonfinite_lines) + " lines" +
-                    (c.split_extra ? " (split into " + std::to_string(c.split_extra) + " extra lines)" : ""));
-    if (c.outlier_points)
-        w.push_back("dropped " + std::to_string(c.outlier_points) + " outlying points (a coordinate beyond +-" +
-                    short_number(io::max_coordinate()) + "; PATHLET_MAX_COORDINATE raises the limit)");
-    if (c.dup_points)
-        w.push_back("dropped " + std::to_string(c.dup_points) + " duplicate consecutive points (zero-length segments) in " +
-                    std::to_string(c.dup_lines) + " lines");
-    if (c.equal_time_points)
-        w.push_back("dropped " + std::to_string(c.equal_time_points) + " points whose time repeats the previous point's");
-    if (c.reversed) w.push_back("reversed " + std::to_string(c.reversed) + " lines whose time decreased along the line");
-    if (c.sorted) w.push_back("sorted " + std::to_string(c.sorted) + " lines by time (time was not monotonic)");
-    if (c.short_lines)
-        w.push_back("dropped " + std::to_string(c.short_lines) + " lines with fewer than 2 distinct points");
+    // The piece in time order, its distinct points appended; a line of it when 2 or more remain.
+    void take_piece(bool& line_had_dup) {
+        if (has_time_ && piece_.size() > 1) order_piece_by_time();
+        const size_t first = out_.position.size();
+        for (uint32_t k : piece_) {
+            if (out_.position.size() > first && !distinct_from_last(k, line_had_dup)) continue;
+            out_.position.push_back(pl_.position[k]);
+            if (has_time_) out_.time.push_back(pl_.time[k]);
+            if (has_vel_) out_.velocity.push_back(pl_.velocity[k]);
+            for (size_t a = 0; a < pl_.arrays.size(); ++a) out_.arrays[a].values.push_back(pl_.arrays[a].values[k]);
+        }
+        const size_t n = out_.position.size() - first;
+        if (n < 2) {
+            ++c_.short_lines;
+            c_.short_points += n;
+            out_.position.resize(first);
+            if (has_time_) out_.time.resize(first);
+            if (has_vel_) out_.velocity.resize(first);
+            for (PointArray& a : out_.arrays) a.values.resize(first);
+        } else {
+            out_.lines.push_back({uint32_t(first), uint32_t(n)});
+        }
+        piece_.clear();
+    }
 
-    out.units = pl.units;
-    if (!has_time && !has_vel) {
-        // Streamlines (tractography, centrelines): a pseudo-time along the arc length at 10 % of
-        // the data's diagonal per second, so a 1 s window shows a tenth of the diagonal moving
-        // along each line whatever the data's scale. Time and speed mean nothing physical.
-        const double pseudo_speed = diag > 0.0 ? 0.1 * diag : 1.0;
-        out.time.resize(out.position.size());
-        for (auto& r : out.lines) {
+    // A piece whose time decreases is reversed; one that goes back and forth, sorted (stable).
+    void order_piece_by_time() {
+        bool inc = true, dec = true;
+        for (size_t i = 1; i < piece_.size(); ++i) {
+            if (pl_.time[piece_[i]] < pl_.time[piece_[i - 1]]) inc = false;
+            if (pl_.time[piece_[i]] > pl_.time[piece_[i - 1]]) dec = false;
+        }
+        if (!inc && dec) {
+            std::reverse(piece_.begin(), piece_.end());
+            ++c_.reversed;
+        } else if (!inc) {
+            std::stable_sort(piece_.begin(), piece_.end(), [&](uint32_t a, uint32_t b) { return pl_.time[a] < pl_.time[b]; });
+            ++c_.sorted;
+        }
+    }
+
+    // Point k against the last point kept: not at the same place, not at the same time.
+    bool distinct_from_last(uint32_t k, bool& line_had_dup) {
+        const size_t last = out_.position.size() - 1;
+        const glm::vec3 d = pl_.position[k] - out_.position[last];
+        if (glm::dot(d, d) <= eps2_) {
+            ++c_.dup_points;
+            line_had_dup = true;
+            return false;
+        }
+        if (has_time_ && !(pl_.time[k] > out_.time[last])) {
+            ++c_.equal_time_points;
+            return false;
+        }
+        return true;
+    }
+
+    void report_drops() const {
+        auto& w = warnings_;
+        if (c_.nonfinite_points)
+            w.push_back("dropped " + std::to_string(c_.nonfinite_points) + " non-finite (NaN/inf) points in " +
+                        std::to_string(c_.nonfinite_lines) + " lines" +
+                        (c_.split_extra ? " (split into " + std::to_string(c_.split_extra) + " extra lines)" : ""));
+        if (c_.outlier_points)
+            w.push_back("dropped " + std::to_string(c_.outlier_points) + " outlying points (a coordinate beyond +-" +
+                        short_number(io::max_coordinate()) + "; PATHLET_MAX_COORDINATE raises the limit)");
+        if (c_.dup_points)
+            w.push_back("dropped " + std::to_string(c_.dup_points) + " duplicate consecutive points (zero-length segments) in " +
+                        std::to_string(c_.dup_lines) + " lines");
+        if (c_.equal_time_points)
+            w.push_back("dropped " + std::to_string(c_.equal_time_points) + " points whose time repeats the previous point's");
+        if (c_.reversed) w.push_back("reversed " + std::to_string(c_.reversed) + " lines whose time decreased along the line");
+        if (c_.sorted) w.push_back("sorted " + std::to_string(c_.sorted) + " lines by time (time was not monotonic)");
+        if (c_.short_lines)
+            w.push_back("dropped " + std::to_string(c_.short_lines) + " lines with fewer than 2 distinct points");
+    }
+
+    // Streamlines (tractography, centrelines): a pseudo-time along the arc length at 10 % of
+    // the data's diagonal per second, so a 1 s window shows a tenth of the diagonal moving
+    // along each line whatever the data's scale. Time and speed mean nothing physical.
+    void pseudo_time_along_arc() {
+        pseudo_speed_ = diag_ > 0.0 ? 0.1 * diag_ : 1.0;
+        out_.time.resize(out_.position.size());
+        for (auto& r : out_.lines) {
             double arc = 0.0;
-            out.time[r.first] = 0.0f;
+            out_.time[r.first] = 0.0f;
             for (uint32_t k = r.first + 1; k < r.first + r.count; ++k) {
-                arc += glm::length(glm::dvec3(out.position[k]) - glm::dvec3(out.position[k - 1]));
-                out.time[k] = std::max(float(arc / pseudo_speed), std::nextafter(out.time[k - 1], INFINITY));
+                arc += glm::length(glm::dvec3(out_.position[k]) - glm::dvec3(out_.position[k - 1]));
+                out_.time[k] = std::max(float(arc / pseudo_speed_), std::nextafter(out_.time[k - 1], INFINITY));
             }
         }
-        // Velocity: the unit tangent at exactly the pseudo-speed, so a speed colour map gives
-        // every streamline the same colour instead of noise from uneven point spacing.
-        out.velocity.resize(out.position.size());
-        for (auto& r : out.lines) {
+        out_.units.time = out_.units.velocity = "";
+        out_.timeless = true;
+        warnings_.push_back("no time and no velocity: streamlines, drawn whole (pseudo-time along the arc length for "
+                            "animation: " + short_number(pseudo_speed_) + " length units per second, 10 % of the diagonal)");
+    }
+
+    // Velocity of streamlines: the unit tangent at exactly the pseudo-speed, so a speed colour
+    // map gives every streamline the same colour instead of noise from uneven point spacing.
+    void tangent_velocity() {
+        out_.velocity.resize(out_.position.size());
+        for (auto& r : out_.lines) {
             const uint32_t a = r.first, e = r.first + r.count - 1;
             for (uint32_t k = a; k <= e; ++k) {
-                const glm::vec3 d = out.position[k == e ? e : k + 1] - out.position[k == a ? a : k - 1];
+                const glm::vec3 d = out_.position[k == e ? e : k + 1] - out_.position[k == a ? a : k - 1];
                 const float len = glm::length(d);
-                out.velocity[k] = len > 0.0f ? d * float(pseudo_speed / len) : glm::vec3(float(pseudo_speed), 0.0f, 0.0f);
+                out_.velocity[k] = len > 0.0f ? d * float(pseudo_speed_ / len) : glm::vec3(float(pseudo_speed_), 0.0f, 0.0f);
             }
         }
-        out.units.time = out.units.velocity = "";
-        out.timeless = true;
-        w.push_back("no time and no velocity: streamlines, drawn whole (pseudo-time along the arc length for "
-                    "animation: " + short_number(pseudo_speed) + " length units per second, 10 % of the diagonal)");
-    } else if (!has_time) {
-        // Time from arc length / speed: dt = |dp| / mean(|v_k|, |v_k+1|). A stagnant pair
-        // (both speeds 0) uses the median speed of the whole set so time stays increasing.
+    }
+
+    // Time from arc length / speed: dt = |dp| / mean(|v_k|, |v_k+1|). A stagnant pair (both
+    // speeds 0) uses the median speed of the whole set so time stays increasing.
+    void time_from_speed() {
         std::vector<float> speeds;
-        speeds.reserve(out.velocity.size());
-        for (auto& v : out.velocity) if (glm::length(v) > 0) speeds.push_back(glm::length(v));
+        speeds.reserve(out_.velocity.size());
+        for (auto& v : out_.velocity)
+            if (glm::length(v) > 0) speeds.push_back(glm::length(v));
         float fallback = 1.0f;
         if (!speeds.empty()) {
             std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
             fallback = speeds[speeds.size() / 2];
         }
-        out.time.resize(out.position.size());
-        for (auto& r : out.lines) {
+        out_.time.resize(out_.position.size());
+        for (auto& r : out_.lines) {
             double t = 0.0;
-            out.time[r.first] = 0.0f;
+            out_.time[r.first] = 0.0f;
             for (uint32_t k = r.first + 1; k < r.first + r.count; ++k) {
-                float s = 0.5f * (glm::length(out.velocity[k]) + glm::length(out.velocity[k - 1]));
+                float s = 0.5f * (glm::length(out_.velocity[k]) + glm::length(out_.velocity[k - 1]));
                 if (!(s > 0)) s = fallback;
-                t += glm::length(out.position[k] - out.position[k - 1]) / s;
-                out.time[k] = float(t);
-                if (!(out.time[k] > out.time[k - 1])) out.time[k] = std::nextafter(out.time[k - 1], INFINITY);
+                t += glm::length(out_.position[k] - out_.position[k - 1]) / s;
+                out_.time[k] = float(t);
+                if (!(out_.time[k] > out_.time[k - 1])) out_.time[k] = std::nextafter(out_.time[k - 1], INFINITY);
             }
         }
-        w.push_back("no time array: derived time from arc length / speed (each line starts at t = 0)");
-        // mm over mm/s is s; any other pairing leaves the time unit unknown.
-        const std::string per_s = out.units.length.empty() ? "" : out.units.length + "/s";
-        out.units.time = !per_s.empty() && out.units.velocity == per_s ? "s" : "";
+        warnings_.push_back("no time array: derived time from arc length / speed (each line starts at t = 0)");
+        out_.units.time = derived_time_unit(out_.units);
     }
-    if (!has_vel && !out.timeless) {
-        // Central differences inside a line, one-sided at its ends.
-        out.velocity.resize(out.position.size());
-        for (auto& r : out.lines) {
+
+    // Central differences inside a line, one-sided at its ends.
+    void velocity_from_differences() {
+        out_.velocity.resize(out_.position.size());
+        for (auto& r : out_.lines) {
             uint32_t a = r.first, e = r.first + r.count - 1;
             for (uint32_t k = a; k <= e; ++k) {
                 uint32_t i0 = k == a ? a : k - 1, i1 = k == e ? e : k + 1;
-                out.velocity[k] = (out.position[i1] - out.position[i0]) / (out.time[i1] - out.time[i0]);
+                out_.velocity[k] = (out_.position[i1] - out_.position[i0]) / (out_.time[i1] - out_.time[i0]);
             }
         }
-        if (has_time) {
-            w.push_back("no velocity array: derived velocity by finite differences of position over time");
-            if (out.units.velocity.empty()) out.units.velocity = derived_velocity_unit(out.units);
+        if (has_time_) {
+            warnings_.push_back("no velocity array: derived velocity by finite differences of position over time");
+            if (out_.units.velocity.empty()) out_.units.velocity = derived_velocity_unit(out_.units);
         }
     }
-    if (out.lines.empty() && !pl.lines.empty()) w.push_back("no drawable lines remain after repair: empty pathline set");
-    pl = std::move(out);
-}
+
+    Pathlines& pl_;  // the input, replaced by out_ at the end
+    std::vector<std::string>& warnings_;
+    const std::string& file_;
+    const bool has_time_, has_vel_;
+    double diag_ = 0.0, pseudo_speed_ = 1.0;
+    float eps2_ = 0.0f;
+    Counts c_;
+    Pathlines out_;
+    std::vector<uint32_t> piece_;  // the input's point indices of the piece being taken
+};
+
+}  // namespace
+
+void repair_pathlines(Pathlines& pl, LoadReport& report, const std::string& file) { Repair(pl, report, file).run(); }
 
 }  // namespace pathlet::io

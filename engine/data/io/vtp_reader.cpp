@@ -6,7 +6,7 @@
 #include "pathline_formats.hpp"
 #include "vtk_values.hpp"
 #include "xml_scan.hpp"
-#include "limits.hpp"
+#include "util/input_limits.hpp"
 #include "units.hpp"
 #include "zlib_blocks.hpp"
 

@@ -1,6 +1,6 @@
 #include "zlib_blocks.hpp"
 
-#include "limits.hpp"
+#include "util/input_limits.hpp"
 
 #include <zlib.h>
 

@@ -1,6 +1,6 @@
 // 4DFlowNet HDF5 layout reader (see field_readers.hpp for the axis mapping).
 #include "field_readers.hpp"
-#include "io/limits.hpp"
+#include "util/input_limits.hpp"
 
 #include <hdf5.h>
 

@@ -2,6 +2,8 @@
 #include "cull_scan.hpp"
 #include "saved_bindings.hpp"
 
+#include <pathlet/gl_limits.hpp>
+
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
@@ -89,6 +91,12 @@ void ChunkCuller::allocate(const GpuScene& scene) {
     scene_ = &scene;
     chunks_ = chunks.size();
     segments_ = segments;
+    // The scene's buffers the cull shaders read as storage blocks, and the indices they write,
+    // against the block size (positions and indices grow with the data; the others less).
+    const std::string at = "for " + std::to_string(scene.cpu().lines.position.size()) + " data points";
+    check_storage_block(scene.cpu().lines.position.size() * sizeof(glm::vec3), "the line culling's positions", at,
+                        "cull=false draws without it");
+    check_storage_block(segments * 2 * 4, "the line culling's indices", at, "cull=false draws without it");
     // Zeroed state: nothing visible yet. A chunk's strip draws at most its own segment count
     // (line_cull_chunks.comp), so every segment of the scene twice (GL_LINES) bounds the indices.
     // (culling_bytes() adds these up.)

@@ -12,7 +12,9 @@ PassTypeBuilder& declare_core_ao_inputs(PassTypeBuilder& b) {
                      "with ao/core connected: a fragment within this linear depth of the core surface gets its AO; "
                      "fragments in front of the core (faded ones) and behind it stay unoccluded")
         .input_texture("ao", "r16f", "smoothed AO of the opaque core (bilateral's ao_smooth)", {.optional = true})
-        .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core)", {.optional = true});
+        .input_texture("core", "rgba16f", "normal + linear depth of the opaque core (fade_core, drawing the same lines: "
+                       "every parameter the two share must agree)",
+                       {.optional = true, .same_params = {"*"}});
 }
 
 std::vector<std::string> core_ao_defines(const PassContext& ctx) {

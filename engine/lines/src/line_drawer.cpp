@@ -58,31 +58,32 @@ void check_block_layout(const ShaderProgram& prog) {
 }  // namespace
 
 Hooks hooks(const PassContext& ctx) {
-    const Params& p = ctx.params();
-    return {p.s("width_hook"), p.s("color_hook")};
+    return {ctx.shaders().hook(HookRole::width), ctx.shaders().hook(HookRole::color)};
 }
 
-std::string hook_entry(const std::string& file, const std::string& role) {
-    // A hook is only its function: compiled as the stage its role needs, after the kit's
-    // definitions (LinePoint, the uniform block: ShaderProgram's "stage:prelude+file").
-    return std::string(role == "width" ? "geom" : "frag") + ":line_hooks.glsl+" + file;
+ShaderStage hook_stage(const ShaderSource& source, HookRole role, const std::string& file) {
+    // A hook is only its function: compiled after the kit's definitions (LinePoint, the block).
+    return {hook_role(role).stage, {source.find("line_hooks.glsl"), file}};
 }
 
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
                        const std::vector<std::string>& defines) {
-    std::vector<std::string> files{"line_kit.vert", "line_quad.geom",
-                                   hooks.width.empty() ? "line_width_default.geom" : hook_entry(hooks.width, "width")};
-    files.insert(files.end(), fragment.begin(), fragment.end());
-    files.push_back(hooks.color.empty() ? "line_color_default.frag" : hook_entry(hooks.color, "color"));
+    const ShaderSource& src = ctx.shaders();
+    auto own = [&](const std::string& name) { return ShaderStage{ShaderStage::of_extension(name), {src.find(name)}}; };
+    std::vector<ShaderStage> stages{own("line_kit.vert"), own("line_quad.geom"),
+                                    hooks.width.empty() ? own("line_width_default.geom")
+                                                        : hook_stage(src, HookRole::width, hooks.width)};
+    for (const auto& f : fragment) stages.push_back(own(f));
+    stages.push_back(hooks.color.empty() ? own("line_color_default.frag") : hook_stage(src, HookRole::color, hooks.color));
     std::vector<std::string> all = defines;
-    if (!hooks.width.empty()) all.push_back("LINE_WIDTH_HOOKED");  // see line_quad.geom
+    if (!hooks.width.empty()) all.push_back(hook_role(HookRole::width).defines);  // see line_quad.geom
     // Specialised per colour map and for the default (opaque) colour hook: llvmpipe runs both
     // sides of every branch, so a uniform switch costs all four maps per fragment. setup()
     // runs again when a parameter changes, which picks the new variant.
     if (ctx.params().raw().contains("colormap"))
         all.push_back("LINE_COLORMAP " + std::to_string(ctx.params().index("colormap")));
     if (hooks.color.empty()) all.push_back("LINE_OPAQUE");
-    ShaderProgram& prog = ctx.program(files, all);
+    ShaderProgram& prog = ctx.program_from(stages, all);
     check_block_layout(prog);
     // A hook that reads the pass's hook_buffer (line_hook_buffer.glsl) needs it connected: else
     // the block would read whatever buffer was bound there last.

@@ -53,7 +53,8 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
         .param_enum("colormap", "green_red", colormaps(),
                     "speed colour map: green_red (study: green slow, yellow, red fast), viridis, coolwarm, grey; or "
                     "direction: RGB = |dx|, |dy|, |dz| of the line's unit tangent (the tractography convention)")
-        .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile")
+        .param_float("speed_min", 0.0, -1.0, 1e9, "speed mapped to the colour map's start; <= 0: the data's 1st percentile",
+                     {.at_most = "speed_max", .automatic_at_or_below = 0.0})
         .param_float("speed_max", 0.0, -1.0, 1e9, "speed mapped to the colour map's end; <= 0: the data's 99th percentile")
         .param_color("background", {1.0f, 1.0f, 1.0f}, "colour of pixels without lines")
         .param_float("lod", 0.1, 0.0, 16.0,
@@ -68,10 +69,10 @@ PassTypeBuilder& declare_params(PassTypeBuilder& b, const Hooks& defaults) {
                    "cull only when the window holds at least this many data segments: below it the culling's "
                    "fixed work (its dispatches and the depth pyramid) costs more than the hidden chunks save "
                    "(llvmpipe, study phantom, 720p: even at 68k, 15 % faster at 78k); 0 = always")
-        .param_hook("color_hook", "color", defaults.color,
+        .param_hook(HookRole::color, defaults.color,
                     "colour hook: a GLSL file (on the shader path or next to the graph) defining vec4 "
                     "line_color_hook(vec4 rgba, LinePoint p); empty = the colour map as it is, opaque")
-        .param_hook("width_hook", "width", defaults.width,
+        .param_hook(HookRole::width, defaults.width,
                     "width hook: a GLSL file defining float line_width_hook(LinePoint p), a multiplier of the "
                     "width (0..4); empty = full width")
         .input_buffer("hook_buffer",

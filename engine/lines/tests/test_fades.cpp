@@ -322,7 +322,7 @@ TEST(PassDocs, ReadmeTablesMatchTheDeclarations) {
         ASSERT_NE(a, std::string::npos) << type << "/README.md lacks the generated tables; run scripts/update-pass-docs.sh";
         ASSERT_NE(b, std::string::npos) << type << "/README.md";
         // As `passes --describe` shows it: with the parameters of its default hooks.
-        EXPECT_EQ(text.substr(a + begin.size(), b - a - begin.size()), instance_type(*t, json::object(), {})->markdown())
+        EXPECT_EQ(text.substr(a + begin.size(), b - a - begin.size()), instance_type_with(*t)->markdown())
             << type << "/README.md is out of date: run scripts/update-pass-docs.sh";
         EXPECT_EQ(text.find("shared/"), std::string::npos) << type << "/README.md must be self-contained";
         ++checked;

@@ -50,7 +50,7 @@ bool PassContext::use_compute() const {
 ShaderProgram& PassContext::fullscreen_program(const std::string& file, std::vector<std::string> defines) {
     if (!use_compute()) return program({"fullscreen.vert", file}, defines);
     defines.push_back("FULLSCREEN_COMPUTE");
-    return program({"comp:" + file}, defines);
+    return program_from({{GL_COMPUTE_SHADER, {shaders().find(file)}}}, defines);
 }
 
 void PassContext::dispatch_fullscreen(ShaderProgram& prog, const std::string& depth_pin) {

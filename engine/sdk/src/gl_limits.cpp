@@ -2,6 +2,7 @@
 #include <pathlet/shader.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -50,7 +51,7 @@ const std::vector<GlLimit>& gl_limit_table() {
         PATHLET_SIZE(GL_MAX_TEXTURE_SIZE, 16384),
         PATHLET_SIZE(GL_MAX_3D_TEXTURE_SIZE, 2048),
         PATHLET_SIZE(GL_MAX_TEXTURE_BUFFER_SIZE, 65536),
-        PATHLET_SIZE(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 1 << 24),
+        PATHLET_LIMIT(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 1 << 27),
         PATHLET_SIZE(GL_MAX_UNIFORM_BLOCK_SIZE, 16384),
     };
     return table;
@@ -110,6 +111,24 @@ const GlLimits& gl_limits() {
     }
     cached.minimum_ = minimum;
     return cached;
+}
+
+std::string at_picture_size(int width, int height) {
+    return "at " + std::to_string(width) + "x" + std::to_string(height);
+}
+
+void check_storage_block(size_t bytes, const std::string& what, const std::string& at, const std::string& hint) {
+    const GlLimits& l = gl_limits();
+    const size_t limit = size_t(std::max(l.get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 0));
+    if (bytes <= limit) return;
+    auto mib = [](size_t b) {
+        char s[32];
+        std::snprintf(s, sizeof s, "%.1f MiB", double(b) / 1048576.0);
+        return std::string(s);
+    };
+    throw std::runtime_error(what + " needs " + mib(bytes) + " in one storage block " + at + ", above the " + mib(limit) +
+                             " this context allows" +
+                             l.source(GL_MAX_SHADER_STORAGE_BLOCK_SIZE) + (hint.empty() ? "" : "; " + hint));
 }
 
 // ---- per-program check ----------------------------------------------------------------------

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace pathlet {
 
@@ -31,6 +33,11 @@ void GpuReadback::grow() {
     glCreateBuffers(1, &b.buffer);
     glNamedBufferStorage(b.buffer, size, nullptr, kMapFlags);
     b.mapped = static_cast<const unsigned char*>(glMapNamedBufferRange(b.buffer, 0, size, kMapFlags));
+    if (!b.mapped) {  // nothing could be read back: an error, never a lost count
+        glDeleteBuffers(1, &b.buffer);
+        throw std::runtime_error("read-back: cannot map a buffer of " + std::to_string(size) +
+                                 " bytes (glMapNamedBufferRange failed)");
+    }
     blocks_.push_back(b);
     // Lowest slot on top of the free list: slots are used in order while the GPU keeps up.
     for (size_t i = n; i-- > 0;) free_.push_back(int(slot_count_ + i));
@@ -38,8 +45,7 @@ void GpuReadback::grow() {
 }
 
 const unsigned char* GpuReadback::slot_bytes(int slot) const {
-    const Block& b = blocks_[size_t(slot) / per_block_];
-    return b.mapped ? b.mapped + (size_t(slot) % per_block_) * stride_ : nullptr;
+    return blocks_[size_t(slot) / per_block_].mapped + (size_t(slot) % per_block_) * stride_;
 }
 
 void GpuReadback::copy(GLuint buffer, size_t offset, uint64_t tag, uint64_t frame) {
@@ -77,7 +83,7 @@ void GpuReadback::hand_out(Pending& p, const Take& take) {
     r.frame = p.frame;
     r.data = p.slot < 0 ? p.kept.data() : slot_bytes(p.slot);
     if (p.slot >= 0) free_.push_back(p.slot);  // before take(), which may throw; nothing copies meanwhile
-    if (r.data && take) take(r);
+    if (take) take(r);
 }
 
 size_t GpuReadback::poll(const Take& take) {

@@ -161,6 +161,9 @@ std::string PassTypeInfo::describe() const {
     std::ostringstream s;
     s << type << " — " << doc << "\n";
     if (!plugin_file.empty()) s << "plugin: " << plugin_file << "\n";
+    if (!gpu_wait_reason.empty())
+        s << "waits for the GPU in the frame loop" << (gpu_wait_when.empty() ? "" : " (with " + gpu_wait_when + ")")
+          << ": " << gpu_wait_reason << "\n";
     s << "\nparameters:\n";
     if (params.empty()) s << "  (none)\n";
     for (const auto& p : params) {
@@ -169,7 +172,7 @@ std::string PassTypeInfo::describe() const {
             if (std::isfinite(p.min) || std::isfinite(p.max)) s << ", range " << range_text(p);
         if (p.type == ParamType::Enum) s << ", one of " << join(p.choices);
         if (p.pixels) s << ", pixels";
-        if (!p.hook.empty()) s << ", " << p.hook << " hook file";
+        if (p.hook) s << ", " << hook_role(*p.hook).name << " hook file";
         if (!p.origin.empty()) s << ", from " << p.origin.substr(0, p.origin.rfind(':'));
         s << ")\n      " << p.doc << "\n";
     }
@@ -255,7 +258,7 @@ std::string PassTypeInfo::markdown() const {
         if (p.type == ParamType::Enum) range = join(p.choices);
         if (p.pixels) range += range.empty() ? "pixels" : ", pixels";
         std::string doc = p.doc;
-        if (!p.hook.empty()) doc += " (" + p.hook + " hook file: its @param uniforms are parameters too)";
+        if (p.hook) doc += std::string(" (") + hook_role(*p.hook).name + " hook file: its @param uniforms are parameters too)";
         if (!p.origin.empty()) doc += " (`" + p.origin.substr(0, p.origin.rfind(':')) + "`)";
         s << "| `" << p.name << "` | " << to_string(p.type) << " | `" << md_cell(p.def.dump()) << "` | " << md_cell(range)
           << " | " << md_cell(doc) << " |\n";
@@ -302,6 +305,8 @@ ParamDecl ranged(ParamDecl p, double min, double max, ParamOptions o) {
     p.min = min;
     p.max = max;
     p.pixels = o.pixels;
+    p.at_most = o.at_most;
+    p.automatic_at_or_below = o.automatic_at_or_below;
     return p;
 }
 }  // namespace
@@ -333,9 +338,8 @@ PassTypeBuilder& PassTypeBuilder::param_string(const std::string& name, const st
     info_.params.push_back(make_param(name, ParamType::String, def, doc));
     return *this;
 }
-PassTypeBuilder& PassTypeBuilder::param_hook(const std::string& name, const std::string& role, const std::string& def,
-                                             const std::string& doc) {
-    ParamDecl p = make_param(name, ParamType::String, def, doc);
+PassTypeBuilder& PassTypeBuilder::param_hook(HookRole role, const std::string& def, const std::string& doc) {
+    ParamDecl p = make_param(hook_role(role).param, ParamType::String, def, doc);
     p.hook = role;
     info_.params.push_back(p);
     return *this;
@@ -361,6 +365,7 @@ PinDecl make_pin(const std::string& name, PinDir dir, PinKind kind, const std::s
     p.optional = o.optional;
     p.mips = o.mips;
     p.scale = o.scale;
+    p.same_params = o.same_params;
     p.doc = doc;
     return p;
 }

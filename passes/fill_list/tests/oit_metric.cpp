@@ -1,5 +1,7 @@
 #include "oit_metric.hpp"
 
+#include "graph/graph_model.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -9,8 +11,8 @@
 namespace pathlet::oit_test {
 
 MetricGraph metric_graph(const std::string& shipped_graph, const std::string& scratch_dir) {
-    std::ifstream in(shipped_graph);
-    nlohmann::json g = nlohmann::json::parse(in, nullptr, true, /*ignore_comments=*/true);
+    // The graph as merged from its bases: the passes it inherits are edited too.
+    nlohmann::json g = expanded_graph_json(shipped_graph);
     MetricGraph m;
     m.front_alpha_name = "metric_front_alpha";
     g["resources"][m.front_alpha_name] = {{"format", "r16f"}};

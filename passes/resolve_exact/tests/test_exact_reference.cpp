@@ -1,10 +1,14 @@
-// The exact transparency reference proven twice (issue 42): variant2_exact (the lists with every
-// fragment, resolve_exact) and variant2_depth_peel (depth peeling) are two independent ways to
-// the same picture, so each checks the other: on the phantom and on real data, over the
-// covered pixels, at most 0.1 % more than 2/255 apart. And what makes them exact: ties by line
-// id in both, every fragment however long the list (any sort block gives the same picture,
-// resolve_list's 32-fragment cap does not), and memory or layers that run out fail by name.
+// The exact transparency reference proven twice: variant2_exact (the lists with every fragment,
+// resolve_exact) and variant2_depth_peel (depth peeling) are two independent ways to the same
+// picture, so each checks the other: on the phantom and on real data, over the covered pixels,
+// at most 0.1 % more than 2/255 apart. Also where the depth ties (one rule in both,
+// shaders/oit_depth_group.glsl: fragments at one depth are one layer): halos pushed past the far
+// plane, lines crossing the near plane, twins of one depth; and what makes them exact: every
+// fragment however long the list (any sort block gives the same picture), a cut walk reported,
+// memory or layers that run out fail by name.
+#include "cycle_list.hpp"
 #include "frame_capture.hpp"
+#include "oit_lists.hpp"
 #include "straight_lines.hpp"
 
 #include "executor.hpp"
@@ -18,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -64,10 +69,14 @@ Agreement compare(const Frame& a, const Frame& b, const std::string& image = "fi
     return r;
 }
 
+// `exact_sets` and `peel_sets` go to one graph each (a pass parameter names its own pass).
 void expect_agree(const Scene& scene, glm::ivec2 size, double t, const std::vector<std::string>& sets,
-                  const std::string& what) {
-    const Frame exact = render("variant2_exact", scene, size, t, sets);
-    const Frame peel = render("variant2_depth_peel", scene, size, t, sets);
+                  const std::string& what, const std::string& camera = "", std::vector<std::string> exact_sets = {},
+                  std::vector<std::string> peel_sets = {}) {
+    exact_sets.insert(exact_sets.begin(), sets.begin(), sets.end());
+    peel_sets.insert(peel_sets.begin(), sets.begin(), sets.end());
+    const Frame exact = render("variant2_exact", scene, size, t, exact_sets, camera);
+    const Frame peel = render("variant2_depth_peel", scene, size, t, peel_sets, camera);
     const Agreement a = compare(exact, peel);
     std::printf("%s: %zu covered px, %zu (%.4f %%) more than 2/255 apart, max %.1f/255; %g layers peeled, "
                 "truncated %g\n",
@@ -129,10 +138,11 @@ TEST(ExactReference, AgreesWithDepthPeelingOnRealData) {
 }
 
 // Two lines with the same points (so every fragment of one has a twin at the same depth) and
-// different speeds (colours): both techniques put the lower line id in front, whichever colour
-// it has. Checked against each line alone: with opacity a, line 0 over line 1 over white is
-// p0 + (1 - a) (p1 - white), where p_i is line i alone over white.
-TEST(ExactReference, TiesAreOrderedByLineIdInBoth) {
+// different speeds (colours): one layer of both in either reference, whichever line comes
+// first, with the opacity of two (1 - (1 - a)^2) and the mean of the two colours (equal
+// absorbances), checked against each line alone: line i alone over white is p_i = a c_i +
+// (1 - a) white.
+TEST(ExactReference, FragmentsAtOneDepthAreOneLayerWhateverTheirLinesInBoth) {
     const StraightLine slow{.from = {0, 0, 0}, .to = {10, 0, 0}, .speed = 1.0f};
     StraightLine fast = slow;
     fast.speed = 3.0f;
@@ -155,17 +165,109 @@ TEST(ExactReference, TiesAreOrderedByLineIdInBoth) {
     for (const std::string g : {"variant2_exact", "variant2_depth_peel"}) {
         const glm::vec3 p_slow = centre(g, {slow}), p_fast = centre(g, {fast});
         ASSERT_GT(glm::length(p_slow - p_fast), 0.2f) << g << ": the two speeds should have different colours";
-        const glm::vec3 slow_front = p_slow + (1.0f - a) * (p_fast - white);
-        const glm::vec3 fast_front = p_fast + (1.0f - a) * (p_slow - white);
-        ASSERT_GT(glm::length(slow_front - fast_front), 0.05f);
+        const glm::vec3 c_slow = (p_slow - (1.0f - a) * white) / a, c_fast = (p_fast - (1.0f - a) * white) / a;
+        const float both = 1.0f - (1.0f - a) * (1.0f - a);
+        const glm::vec3 want = both * 0.5f * (c_slow + c_fast) + (1.0f - both) * white;
+        // Either order in front would be this far from it: the rule is not an order.
+        ASSERT_GT(glm::length(want - (p_slow + (1.0f - a) * (p_fast - white))), 0.03f);
         for (bool slow_first : {true, false}) {
             const glm::vec3 got = slow_first ? centre(g, {slow, fast}) : centre(g, {fast, slow});
-            const glm::vec3 want = slow_first ? slow_front : fast_front;
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(got[c], want[c], 2.5f / 255.0f) << g << (slow_first ? ": slow line 0" : ": fast line 0")
-                                                             << ", channel " << c;
+                                                            << ", channel " << c;
         }
     }
+}
+
+// Where the references' rule bites: ties at clamped depths. The lists are read back to show that
+// each scene has them (pixels with fragments at exactly 1.0 or 0.0, and pixels where one line
+// has several fragments at one depth), and the two references must still agree per pixel.
+struct Ties {
+    size_t covered = 0, at_far = 0, at_near = 0, one_line_repeated = 0;
+};
+
+Ties ties_in_lists(const Scene& scene, glm::ivec2 size, double t, const std::vector<std::string>& sets,
+                   const std::string& camera = "") {
+    RenderOptions opt;
+    opt.camera_path = camera;
+    opt.graph_path = graph("variant2_exact");
+    opt.size = size;
+    opt.time.start = t;
+    opt.sets = sets;
+    opt.sets.push_back("overlay=false");
+    opt.keep = {"heads", "nodes"};
+    Ties ties;
+    opt.time.end = t;
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    render(test_runtime(), scene, opt, [&](const Executor& ex, size_t) {
+        const OitLists l = read_oit_lists(ex);
+        for (GLuint h : l.heads) {
+            if (h == 0xFFFFFFFFu) continue;
+            ++ties.covered;
+            std::vector<std::pair<double, GLuint>> frags;  // depth, line id
+            for (GLuint i = h; i != 0xFFFFFFFFu; i = l.nodes[i].z) frags.emplace_back(node_depth(l.nodes[i]), l.nodes[i].w);
+            std::sort(frags.begin(), frags.end());
+            bool far = false, near = false, repeated = false;
+            for (size_t k = 0; k < frags.size(); ++k) {
+                far = far || frags[k].first == 1.0;
+                near = near || frags[k].first == 0.0;
+                repeated = repeated || (k > 0 && frags[k] == frags[k - 1]);
+            }
+            ties.at_far += far, ties.at_near += near, ties.one_line_repeated += repeated;
+        }
+    });
+    std::printf("lists: %zu covered px, %zu with a fragment at 1.0, %zu at 0.0, %zu where one line has two at one "
+                "depth\n",
+                ties.covered, ties.at_far, ties.at_near, ties.one_line_repeated);
+    return ties;
+}
+
+// halo_depth 1: every halo fragment is pushed back by up to the whole depth range, most of them
+// past the far plane, where the linear depth is clamped to exactly 1.0. Depth peeling peeled
+// with LESS against its cleared 1.0 and lost them all (35.6 % of the covered pixels more than
+// 2/255 apart with the 1 s window).
+TEST(ExactReference, AgreesWithHalosPushedPastTheFarPlane) {
+    const Scene& s = study_phantom();
+    for (const std::string window : {"window=1", "window=0"}) {
+        const Ties ties = ties_in_lists(s, {640, 360}, 9.0, {window, "fill_list.halo_depth=1"});
+        EXPECT_GT(ties.at_far, ties.covered / 3) << window << ": the halos should reach the far plane";
+        EXPECT_GT(ties.one_line_repeated, 50u) << window << ": pixels where one line has two fragments at 1.0";
+        expect_agree(s, {640, 360}, 9.0, {window}, "phantom, halos past the far plane, " + window, "",
+                     {"fill_list.halo_depth=1"}, {"depth_peel.halo_depth=1"});
+    }
+}
+
+// Lines that run through the near plane towards the camera (the camera inside the data): the
+// tube's bulge in front of the near plane clamps their linear depth to exactly 0.0, many
+// fragments of one line at one depth in every pixel near the plane.
+TEST(ExactReference, AgreesWhereLinesCrossTheNearPlane) {
+    // The camera at z = 20 looks down -z; the data's bounding sphere holds it, so the near plane
+    // is 1 % of the sphere's radius (about 0.22) in front of it. Lines converge on the eye and end
+    // 0.15 to 0.38 in front of it, just off the axis: their last segments fill the picture, and
+    // the tube's bulge (half a width, 0.11) takes their fragments in front of the near plane.
+    // Their last points zigzag by less than the width, so a line's segments overlap there.
+    std::vector<StraightLine> lines;
+    for (int i = 0; i < 24; ++i) {
+        const float a = 0.2618f * float(i), r = 0.01f * float(1 + i % 4);
+        lines.push_back({.from = {6.0f * std::cos(a), 6.0f * std::sin(a), -20.0f},
+                         .to = {r * std::cos(a), r * std::sin(a), 20.0f - (0.15f + 0.01f * float(i))},
+                         .speed = 1.0f + 0.25f * float(i % 8)});
+    }
+    Scene scene = straight_lines_scene(lines);
+    for (const LineRange& l : scene.lines.lines)
+        for (uint32_t k = l.count - 8; k < l.count; ++k) scene.lines.position[l.first + k].x += (k % 2 ? 0.03f : -0.03f);
+    const std::string cam = write_camera_down_z(test_scratch_dir("pathlet_exact") + "/near_cam.json", {0, 0, 0}, 20, 40);
+    const std::vector<std::string> sets = {"window=0", "color_hook=uniform_fade.glsl", "tail_fade=0", "head_fade=0",
+                                           "lod=0"};
+    std::vector<std::string> lists = sets;
+    lists.push_back("fill_list.opacity=0.3");
+    const Ties ties = ties_in_lists(scene, {320, 180}, 5.0, lists, cam);
+    EXPECT_GT(ties.at_near, ties.covered / 20) << "fragments in front of the near plane should be clamped to 0";
+    EXPECT_GT(ties.one_line_repeated, ties.covered / 100) << "one line should have several fragments at depth 0";
+    expect_agree(scene, {320, 180}, 5.0, sets, "lines through the near plane", cam, {"fill_list.opacity=0.3"},
+                 {"depth_peel.opacity=0.3"});
 }
 
 // Lists far longer than resolve_list's cap and than the sort block: every fragment counts, so
@@ -222,4 +324,26 @@ TEST(ExactReference, LayersThatRunOutFailByName) {
     } catch (const std::exception& e) {
         EXPECT_NE(std::string(e.what()).find("max_layers"), std::string::npos) << e.what();
     }
+}
+
+// A walk cut short is never silent: a cyclic list in one frame of three (the list holding node 0
+// links to itself in frame 1) makes that frame, and only it, incomplete, though the frame after
+// it is clean (the cut count is the frame's own, read with the pending count).
+TEST(ExactReference, ACyclicListInOneFrameMakesThatFrameIncomplete) {
+    add_cycle_list_pass(test_runtime());
+    RenderOptions opt;
+    opt.graph_path = write_cyclic_list_graph(test_scratch_dir("pathlet_exact") + "/cyclic.json", 1);
+    opt.size = {160, 90};
+    opt.time = {2.0, 2.08, 0.04};
+    opt.warmup = 0;
+    opt.write_images = false;
+    opt.quiet = true;
+    opt.sets = {"overlay=false"};
+    const RenderResult r = render(test_runtime(), small_phantom_scene(), opt);
+    EXPECT_EQ(r.frames, 3u);
+    EXPECT_EQ(incomplete_frames_line(r), "incomplete frames: 1 of 3 (1)");
+    double cut = 0;  // the mean over the three frames
+    for (const auto& p : r.profiler.passes())
+        if (p.name == "resolve") cut = p.stats.at("truncated_pixels");
+    EXPECT_GT(cut, 0.0) << "the cut pixel is counted";
 }

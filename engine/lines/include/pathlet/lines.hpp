@@ -42,19 +42,20 @@
 
 namespace pathlet::lines {
 
-// GLSL hook files, found on the shader path and next to the graph (or a path the user gave
-// on the command line or in Python). Empty: the kit's default
-// (full width; the colour map as it is, opaque).
+// GLSL hook files: as a pass type names its defaults (file names on the shader path), or as the
+// graph resolved them for a pass (found files, ctx.shaders()). Empty: the kit's default (full
+// width; the colour map as it is, opaque).
 struct Hooks {
     std::string width = {};  // .geom (or .glsl) defining float line_width_hook(LinePoint p)
     std::string color = {};  // .frag (or .glsl) defining vec4 line_color_hook(vec4 rgba, LinePoint p)
 };
-// The hook files a kit pass's parameters name (color_hook, width_hook).
+// The hook files the graph resolved for this pass (its color_hook and width_hook, found).
 Hooks hooks(const PassContext& ctx);
-// One hook as the stage its role needs ("width": geometry, "color": fragment), after the kit's
-// definitions: a ShaderProgram entry ("frag:line_hooks.glsl+FILE"). program() builds its
-// stages with it; `pathlet validate` compiles each hook alone with it.
-std::string hook_entry(const std::string& file, const std::string& role);
+// One hook file as the shader object its role needs (pathlet/hook.hpp: the colour hook a
+// fragment object, the width hook a geometry object), after the kit's definitions
+// (line_hooks.glsl on `source`'s path). program() builds its stages with it; `pathlet validate`
+// compiles each hook alone with it.
+ShaderStage hook_stage(const ShaderSource& source, HookRole role, const std::string& file);
 
 // Colour map names, in the order of the COLORMAP_* constants in shaders/colormap.glsl (an enum
 // parameter's params.index("colormap") is the constant).

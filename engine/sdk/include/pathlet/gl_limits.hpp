@@ -9,6 +9,7 @@
 
 #include <pathlet/gl.hpp>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -18,9 +19,10 @@ struct GlLimit {
     const char* name;  // "GL_MAX_IMAGE_UNITS"
     GLenum pname;
     int minimum;       // the GL 4.5 core profile's required minimum (spec, tables 23.57-23.67)
-    // A count of units, binding points or resources, which minimum mode emulates. Sizes (the
-    // largest texture, texture buffer, storage block) are printed but always the context's: a
-    // driver at those minimums could not hold the study's data at all.
+    // A count of units, binding points or resources, which minimum mode emulates, as it does
+    // the storage block size (128 MiB holds every shipped graph at 1080p). Other sizes (the
+    // largest texture, texture buffer) are printed but always the context's: a driver at those
+    // minimums could not hold the study's data at all.
     bool emulated = true;
 };
 
@@ -51,6 +53,15 @@ bool is_image_type(GLenum type);
 // PATHLET_GL_LIMITS: unset or "context" = the context's; "minimum" = the GL 4.5 minimum; anything
 // else is an error naming the variable.
 const GlLimits& gl_limits();
+
+// A storage block of `bytes` that `what` needs `at` a size ("at 1920x1080" for a buffer of the
+// picture's pixels, "for 3,169 lines" for the data's): throws std::runtime_error naming both and
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE when the block is larger (access beyond it is undefined and
+// nothing would report it). `hint` ends the message (what would fit). Call it in setup, where
+// the size is known, as every pass with a storage block sized by the picture or the data does.
+void check_storage_block(size_t bytes, const std::string& what, const std::string& at, const std::string& hint = "");
+// "at 1920x1080"
+std::string at_picture_size(int width, int height);
 
 // Checks a linked program's active resources, per stage and combined, against gl_limits():
 // samplers, images, storage and uniform blocks, their binding points, fragment outputs and the

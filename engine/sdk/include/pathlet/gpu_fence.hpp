@@ -34,6 +34,16 @@ void advance_gpu_frame();
 int simulated_gpu_latency();
 // Tests: a latency other than the environment's (0: off); a negative value goes back to it.
 void set_simulated_gpu_latency(int frames);
+
+// How long a blocking wait (GpuFence::wait) waits before it gives up with an error naming the
+// frame the fence was issued in: PATHLET_GPU_WAIT_LIMIT seconds (default 120; a whole GPU frame
+// takes far less, but a hung GPU without robustness never signals). Anything but a number > 0
+// throws std::runtime_error naming the variable.
+double gpu_wait_limit_seconds();
+// Tests: a limit other than the environment's; <= 0 goes back to it. And a GPU that never
+// signals (every fence and wait reads "not done"), to see the limit act.
+void set_gpu_wait_limit(double seconds);
+void set_simulated_gpu_hang(bool hung);
 // The simulation's rule alone: may a result issued in `issued_frame` be seen now?
 bool simulated_latency_passed(uint64_t issued_frame);
 
@@ -54,7 +64,8 @@ public:
     // (it would never signal); the simulation answers false before asking GL at all.
     bool signalled(bool flush = true) const;
     // Waits until done, with the flush bit, a second at a time; throws std::runtime_error when
-    // GL reports the wait failed (a lost context). Ignores the simulated latency.
+    // GL reports the wait failed (a lost context) or after gpu_wait_limit_seconds(), naming the
+    // frame the fence was issued in. Ignores the simulated latency.
     void wait() const;
     void reset();  // deletes the sync (no wait)
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include <pathlet/hook.hpp>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,10 +36,13 @@ struct ParamDecl {
     std::vector<std::string> choices;                // Enum only
     std::string doc;
     bool pixels = false;  // a length in picture pixels: bound as u_<name> times the pixel scale
-    // A string naming a hook file of this role ("color" or "width", pathlet/lines.hpp): the
-    // uniforms the file annotates with @param become parameters of the pass instance.
-    std::string hook;
+    // A string naming a hook file of this role (pathlet/hook.hpp): the uniforms the file
+    // annotates with @param become parameters of the pass instance.
+    std::optional<HookRole> hook;
     std::string origin;   // a parameter a hook declared: "file.frag:12"
+    // The lower end of a range whose upper end is the parameter `at_most` (ParamOptions).
+    std::string at_most;
+    double automatic_at_or_below = -std::numeric_limits<double>::infinity();
 
     // Checks and converts a JSON value (ints accepted for floats, "#rrggbb" for colours).
     // Returns an error message, or "" and sets `out`.
@@ -51,6 +56,12 @@ struct ParamOptions {
     // A length in picture pixels (a radius, a band): u_<name> gets it times the render's pixel
     // scale, so `render --ssaa N` looks the same (ints are rounded).
     bool pixels = false;
+    // The lower end of a range whose upper end is the parameter named here: the graph compiler
+    // refuses a value above that one's, naming both (GLSL's clamp(x, lo, hi) is undefined for
+    // lo > hi). Values at or below `automatic_at_or_below` stand for an automatic choice ("<= 0:
+    // the data's") and are not compared.
+    std::string at_most = {};
+    double automatic_at_or_below = -std::numeric_limits<double>::infinity();
 };
 
 enum class PinKind { Texture, Buffer };
@@ -64,6 +75,12 @@ struct PinOptions {
     int mips = 1;           // outputs and internal textures: mip levels; 0 = full chain
     float scale = 1.0f;     // outputs and internal textures: size = scale x output size
     bool persistent = false;  // internal textures and buffers: content kept across frames (not pooled)
+    // Inputs: parameters this pass shares with what produced the input, which must have the same
+    // value in both (the two draw the same fragments, or one reads what the other wrote in a
+    // form both must know): each is compared with the nearest pass up the input's chain of
+    // writers that declares it, and the graph compiler refuses a graph where they differ,
+    // naming both passes. "*": every parameter of this pass.
+    std::vector<std::string> same_params = {};
 };
 // The size of a buffer output: {.bytes = 1024}, {.bytes_per_pixel = 16}, or decided by the
 // pass's resolved parameters, {.from_params = [](const json& p) { return ...; }} (a volume's grid).
@@ -87,6 +104,7 @@ struct PinDecl {
     bool internal = false;       // the pass's own texture or buffer (an output no graph may bind): the
                                  // engine allocates and pools it like any transient, the pass uses it by name
     bool persistent = false;     // internal: kept across frames, never pooled
+    std::vector<std::string> same_params;  // inputs: PinOptions::same_params
     std::string doc;
     // Buffer outputs sized by the pass's resolved parameters (e.g. a volume's grid); takes
     // precedence over bytes/bytes_per_pixel. The compiler, `graph --plan` and pooling see it.
@@ -107,6 +125,10 @@ struct PassTypeInfo {
     std::function<std::unique_ptr<Pass>()> create;
     std::string plugin_file;  // filled in by the plugin host
     bool side_effect = false; // never culled even without connected outputs (capture, stats)
+    // The pass waits for the GPU in the frame loop on purpose (an exact reference reading a count
+    // before it goes on): why, and the bool parameter that makes it wait ("": always). Any other
+    // pass's wait after its first frame is a fault (PATHLET_GL_DEBUG and the latency mode count them).
+    std::string gpu_wait_reason, gpu_wait_when;
 
     const ParamDecl* param(const std::string& name) const;
     const PinDecl* pin(const std::string& name) const;
@@ -134,9 +156,9 @@ public:
     PassTypeBuilder& param_enum(const std::string& name, const std::string& def, std::vector<std::string> choices,
                                 const std::string& doc);
     PassTypeBuilder& param_string(const std::string& name, const std::string& def, const std::string& doc);
-    // A hook file ("color" or "width" role): its @param uniforms become the instance's parameters.
-    PassTypeBuilder& param_hook(const std::string& name, const std::string& role, const std::string& def,
-                                const std::string& doc);
+    // The parameter naming the pass's hook file of `role` (its name from pathlet/hook.hpp:
+    // color_hook, width_hook): the file's @param uniforms become the instance's parameters.
+    PassTypeBuilder& param_hook(HookRole role, const std::string& def, const std::string& doc);
     PassTypeBuilder& param_vec3(const std::string& name, glm::vec3 def, const std::string& doc);
     PassTypeBuilder& param_color(const std::string& name, glm::vec3 def, const std::string& doc);
     // Any parameter, e.g. one reflected from a shader.
@@ -171,6 +193,13 @@ public:
     // The pass does work outside the graph (writes files): the compiler never culls it.
     PassTypeBuilder& side_effect() {
         info_.side_effect = true;
+        return *this;
+    }
+
+    // The pass waits for the GPU in the frame loop, on purpose (PassTypeInfo::gpu_wait_reason).
+    PassTypeBuilder& waits_for_gpu(const std::string& reason, const std::string& when_bool_param = "") {
+        info_.gpu_wait_reason = reason;
+        info_.gpu_wait_when = when_bool_param;
         return *this;
     }
 
@@ -223,7 +252,6 @@ public:
     const PassTypeInfo* type() const { return type_; }
 
 private:
-    friend class Executor;
     const json& at(const std::string& n) const;
     std::string pass_;
     json v_;
@@ -251,6 +279,8 @@ struct Camera {
 
 class GpuScene;
 class ShaderProgram;
+class ShaderSource;
+struct ShaderStage;
 struct PassContextImpl;
 
 // Pathlet's shared data folder (shaders/, graphs/, fonts/): share/pathlet beside libpathlet's
@@ -278,13 +308,19 @@ public:
     Buffer grow_buffer(const std::string& pin, size_t bytes);
 
     const GpuScene& scene() const;
-    // Compiles (once, cached) a program from shader files found on the shader search path
-    // (the pass's own folder first). Compile errors throw and name the file and line.
+    // Where the pass's shaders come from: the search path (PATHLET_SHADER_PATH, the pass's own
+    // folder, the shared shaders, the graph's folders) and the hook files the graph resolved.
+    const ShaderSource& shaders() const;
+    // Compiles (once, cached) a program from shader file names found on shaders()' path (the
+    // pass's own folder first). Compile errors throw and name the file and line.
     // The program is bound by declaration: its uniforms u_<param> hold the pass's parameters
     // (again after every parameter change, before setup() runs), its samplers and images
     // u_<pin> the pins' textures (bound before each execute()). A uniform of that name whose
     // type does not fit the parameter is an error. Set what you derive yourself after that.
     ShaderProgram& program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+    // The same from shader objects given explicitly (files found with shaders(): a hook after
+    // the line kit's definitions, a fragment-style file compiled as compute).
+    ShaderProgram& program_from(const std::vector<ShaderStage>& stages, const std::vector<std::string>& defines = {});
     // The storage-buffer binding point the engine gave buffer pin `pin` (declaration order among
     // the pass's buffer pins, from 0). Every program() of the pass has it as the define
     // binding_define(pin) ("nodes" -> NODES_BINDING), and the executor binds the pin's buffer

@@ -1,24 +1,30 @@
-// GLSL programs loaded from files on the shader search path, with `#include "file"`
-// resolved there too. A file needs no #version line (the engine's, 450 core, comes first; a
-// file's own is used instead). Each source file gets a number in #line directives, so compile
-// errors are reported as "<file>:<line>: <message>" (ShaderError).
+// GLSL programs from shader files: each shader object's files found on a ShaderSource's path
+// (or given found, as a hook is), `#include "file"` inlined, a #version line of the file's own or
+// the engine's (450 core) first. Each file gets a number in #line directives, so compile errors
+// read "<file>:<line>: <message>" (ShaderError).
 #pragma once
 
 #include <pathlet/gl.hpp>
+#include <pathlet/shader_source.hpp>
 
 #include <glm/glm.hpp>
 
 #include <cmath>
 #include <map>
 #include <set>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace pathlet {
 
-struct ShaderError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+// One shader object: its stage and its files, found (absolute or as the ShaderSource found
+// them). The last file is the stage's own; earlier ones are inlined before it (the line kit's
+// definitions before a hook).
+struct ShaderStage {
+    GLenum stage = 0;  // GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
+    std::vector<std::string> files;
+    // The stage a file's extension names: .vert .geom .frag .comp .tesc .tese. ShaderError otherwise.
+    static GLenum of_extension(const std::string& file);
 };
 
 class ShaderProgram {
@@ -30,12 +36,17 @@ public:
     ShaderProgram& operator=(ShaderProgram&& o) noexcept;
     ~ShaderProgram();
 
-    // Stage by extension: .vert .geom .frag .comp, or named: "frag:hook.glsl". Files joined by
-    // '+' are one stage, included in that order: "frag:line_hooks.glsl+hook.glsl" is hook.glsl
-    // after the kit's definitions (a '+' counts after a plain file name with a shader
-    // extension, a stage prefix only when it names a stage). `dirs` are searched in order.
-    static ShaderProgram from_files(const std::vector<std::string>& files, const std::vector<std::string>& dirs,
+    // A program of the given shader objects; `source` finds what their files #include.
+    static ShaderProgram build(const std::vector<ShaderStage>& stages, const ShaderSource& source,
+                               const std::vector<std::string>& defines = {});
+    // A program of shader file names on `source`'s path, each its own object of the stage its
+    // extension names.
+    static ShaderProgram from_files(const std::vector<std::string>& names, const ShaderSource& source,
                                     const std::vector<std::string>& defines = {});
+    static ShaderProgram from_files(const std::vector<std::string>& names, const std::vector<std::string>& dirs,
+                                    const std::vector<std::string>& defines = {}) {
+        return from_files(names, ShaderSource(dirs), defines);
+    }
 
     GLuint id() const { return id_; }
     void use() const { glUseProgram(id_); }
@@ -106,13 +117,5 @@ inline std::vector<std::string> whole_exponent(const std::string& name, float va
     if (n == value && n >= 1.0f && n <= 2047.0f) return {name + " " + std::to_string(int(n))};
     return {};
 }
-
-// Finds a file on the search path; throws ShaderError listing the directories searched. `name`
-// is a file name: one with a '/' or ".." is refused; an absolute path is found only when it is
-// itself an entry of `dirs` (a hook file the user named by its path).
-std::string find_shader_file(const std::string& name, const std::vector<std::string>& dirs);
-// The file an `#include "x"` or `#include <x>` line names, or "" for any other line: what the
-// program loader inlines, and what the graph's hook scan follows for @param lines.
-std::string include_target(const std::string& line);
 
 }  // namespace pathlet
