@@ -60,13 +60,13 @@ void main() {
         // Only over what is behind: where the neighbour's surface is in front (a line close
         // behind this pushed-back halo rim, say), that neighbour does not take this line's
         // fringe either, and the edge stays as drawn, so the outline keeps its darkness.
-        if (cover < 1.0 && texelFetch(u_depth, beyond, 0).r > depth) result = mix(premultiplied(beyond), result, cover);
+        if (cover < 1.0 && dot(e.dir, e.dir) > 0.25 && texelFetch(u_depth, beyond, 0).r > depth)
+            result = mix(premultiplied(beyond), result, cover);
     }
-    // The fringes of lines in front whose rims lie within half a pixel of this pixel's centre,
-    // in the colour of the strip that reaches over (the rim's halo, darker than the neighbour's
-    // average). Per axis both sides count (a pixel in a thin gap between two lines in front shows
-    // both); of the two axes the one that covers more (a corner's two fringes overlap).
-    float cover[4], strip[4];
+    // The fringes of lines in front whose rims lie within half a pixel of this pixel's centre.
+    // Per axis both sides count (a pixel in a thin gap between two lines in front shows both);
+    // of the two axes the one that covers more (a corner's two fringes overlap, so they are not added).
+    float cover[4];
     for (int i = 0; i < 4; ++i) {
         ivec2 q = clamp(p + kNeighbours[i], ivec2(0), size - 1);
         LineEdge en = line_edge_decode(texelFetch(u_edge, q, 0));
@@ -77,7 +77,6 @@ void main() {
         float c = en.line && (inside < 0.0 || inside > en.width) ? coverage(inside, en.width) : 0.0;
         // Only a line in front of this pixel's surface covers it.
         cover[i] = c > 0.0 && texelFetch(u_depth, q, 0).r < depth ? c : 0.0;
-        strip[i] = en.fringe;
     }
     int axis = cover[0] + cover[1] >= cover[2] + cover[3] ? 0 : 2;
     float c0 = cover[axis], c1 = cover[axis + 1];
@@ -87,10 +86,9 @@ void main() {
         c1 /= fringe;
         fringe = 1.0;
     }
-    if (fringe > 0.0) {
-        vec4 f0 = premultiplied(p + kNeighbours[axis]), f1 = premultiplied(p + kNeighbours[axis + 1]);
-        result = result * (1.0 - fringe) + vec4(f0.rgb * strip[axis], f0.a) * c0 + vec4(f1.rgb * strip[axis + 1], f1.a) * c1;
-    }
+    if (fringe > 0.0)
+        result = result * (1.0 - fringe) + premultiplied(clamp(p + kNeighbours[axis], ivec2(0), size - 1)) * c0 +
+                 premultiplied(clamp(p + kNeighbours[axis + 1], ivec2(0), size - 1)) * c1;
     if (u_alpha == 0) write_final(p, vec4(result.rgb, 1.0));
     else write_final(p, result.a > 0.0 ? vec4(result.rgb / result.a, result.a) : texelFetch(u_color, p, 0));
 }

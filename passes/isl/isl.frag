@@ -40,7 +40,7 @@ void main() {
     vec3 lit = c.rgb * (u_ambient + u_diffuse * diffuse) + vec3(u_specular * specular);
     o_color = vec4(line_halo_tint(clamp(lit, 0.0, 1.0), f), 1.0);
 #ifdef WRITE_EDGE
-    o_edge = line_edge(f, clamp(lit, 0.0, 1.0));
+    o_edge = line_edge(f);
 #endif
     gl_FragDepth = line_window_depth(f.depth01);
 }

@@ -172,35 +172,23 @@ float line_halo_integral(float x, float inner, float inv_band) {  // of the tint
     float d = clamp(x, inner, 1.0) - inner;
     return d * (0.5 + 0.25 * d * inv_band);
 }
-// The mean tint weight over |s| in [a, b] (b <= 1; a < 0: the footprint reaches over the centre).
-float line_halo_weight(LineFrag f, float a, float b) {
-    if (f.halo_band <= 0.0) return 0.0;
+vec3 line_halo_tint(vec3 color, LineFrag f) {
+    if (f.halo_band <= 0.0) return color;
     float inner = 1.0 - f.halo_band;
+    float a = f.abs_s - 0.5 * f.s_per_px, b = min(f.abs_s + 0.5 * f.s_per_px, 1.0);
     float sum = line_halo_integral(b, inner, f.inv_halo_band) - line_halo_integral(max(a, 0.0), inner, f.inv_halo_band);
-    if (a < 0.0) sum += line_halo_integral(-a, inner, f.inv_halo_band);
-    return clamp(sum / max(b - a, 1e-6), 0.0, 1.0);
+    if (a < 0.0) sum += line_halo_integral(-a, inner, f.inv_halo_band);  // the footprint reaches over the centre
+    float w = sum / max(b - a, 1e-6);
+    return mix(color, u_halo_color, clamp(w, 0.0, 1.0));
 }
-float line_footprint_halo_weight(LineFrag f) {
-    return line_halo_weight(f, f.abs_s - 0.5 * f.s_per_px, min(f.abs_s + 0.5 * f.s_per_px, 1.0));
-}
-vec3 line_halo_tint(vec3 color, LineFrag f) { return mix(color, u_halo_color, line_footprint_halo_weight(f)); }
 
 #include "line_edge_record.glsl"
 
 // The edge record for edge_aa (the line passes' optional `edge` output; line_edge_record.glsl):
-// the nearer rim, or near a pathlet's end the end (its far side is the pathlet's length). `rgb`:
-// the colour the pass tints with the halo here. The fringe: the next pixel out along the rim
-// shows the line's outermost strip, which is more halo than this pixel's average; its colour
-// relative to this pixel's (by luminance) lets edge_aa blend the right colour there.
-vec4 line_edge(LineFrag f, vec3 rgb) {
-    if (f.cap_px < f.rim_px) return line_edge_encode(f.cap_dir, 1.0, f.cap_px, 4.0);
-    float step = max(abs(f.rim_dir.x), abs(f.rim_dir.y)) * f.s_per_px;  // the next pixel along the rim's axis
-    float a = f.abs_s + step - 0.5 * f.s_per_px;
-    float beyond = a < 1.0 ? line_halo_weight(f, a, 1.0) : 1.0;
-    const vec3 luma = vec3(0.2126, 0.7152, 0.0722);
-    float here = dot(mix(rgb, u_halo_color, line_footprint_halo_weight(f)), luma);
-    float fringe = here > 1e-4 ? dot(mix(rgb, u_halo_color, beyond), luma) / here : 1.0;
-    return line_edge_encode(f.rim_dir, fringe, f.rim_px, 2.0 / f.s_per_px);
+// the nearer rim, or near a pathlet's end the end (its far side is the pathlet's length).
+vec4 line_edge(LineFrag f) {
+    if (f.cap_px < f.rim_px) return line_edge_encode(f.cap_dir, f.cap_px, 4.0);
+    return line_edge_encode(f.rim_dir, f.rim_px, 2.0 / f.s_per_px);
 }
 
 // The share of the pixel the quad covers, box-filtered across the rims (both: a line thinner than

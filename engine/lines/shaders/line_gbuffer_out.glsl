@@ -40,7 +40,7 @@ void line_gbuffer_write(LineFrag f, vec3 rgb) {
     o_line_id = g_in.line_id;
 #endif
 #ifdef WRITE_EDGE
-    o_edge = line_edge(f, rgb);
+    o_edge = line_edge(f);
 #endif
 #ifdef WRITE_TANGENT
     o_tangent = vec4(f.tangent, -g_in.pos_view.z - mix(u_depth_range.x, u_depth_range.y, f.depth01));
