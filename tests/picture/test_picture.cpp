@@ -98,36 +98,6 @@ TEST(EdgeAA, SlantedLinesAreCloserToTheSupersampledFrame) {
     EXPECT_FALSE(has_nan(soft));
 }
 
-// Short pathlets (1 s of the two straight lines: 27 and 7 px long, 3.4 px wide, along the rows;
-// their ends a fraction of a pixel off the pixel grid): their ends are edges as much as their
-// rims, smoothed from the distance to the end along the line. Per column, the ink (darkening of
-// the background summed down the column) is the supersampled frame's; 8x8 samples, because 4x4
-// put an end only to a quarter pixel, as far from the exact coverage as the analytic edge is.
-TEST(EdgeAA, PathletEndsAreSmoothAsTheirRims) {
-    const std::vector<std::string> sets{"overlay=false", "window=1", "line_width=0.5", "strength=0"};
-    std::vector<std::string> ref_sets = sets;
-    ref_sets.push_back("aa=false");
-    const glm::ivec2 size{192, 144};
-    const double t = 5.03;
-    const Image ref = render_image(two_speed_lines_scene(), "variant1_lineao", ref_sets, size, 8, "final", true, t);
-    const Image soft = render_image(two_speed_lines_scene(), "variant1_lineao", sets, size, 1, "final", true, t);
-    auto ink = [&](const Image& im, int x) {
-        double sum = 0;
-        for (int y = 0; y < size.y; ++y) sum += 3.0 - (im.at(x, y, 0) + im.at(x, y, 1) + im.at(x, y, 2));
-        return sum / 3.0;
-    };
-    double off = 0, total = 0, worst = 0;
-    for (int x = 0; x < size.x; ++x) {
-        const double d = std::fabs(ink(soft, x) - ink(ref, x));
-        off += d, total += ink(ref, x), worst = std::max(worst, d);
-    }
-    std::printf("short pathlets: ink per column off the 8x8 supersampled frame's by %.3f of %.3f, at most %.3f\n", off,
-                total, worst);
-    EXPECT_GT(total, 50.0) << "the pathlets must be there";
-    EXPECT_LT(worst, 0.6) << "an end column's ink: the end is not smoothed";
-    EXPECT_LE(aa_figures(soft, ref).speckle, 0.003);
-}
-
 TEST(EdgeAA, DenseBundleGetsCloserAndStaysDarkInside) {
     const std::vector<std::string> base{"overlay=false", "window=3", "line_width=1.2"};
     auto with = [&](const std::string& more) {
