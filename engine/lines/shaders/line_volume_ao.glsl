@@ -88,15 +88,18 @@ float vao_open(vec3 pg, vec3 n, vec3 qg, vec3 t, vec3 tx, float ds, float r_h) {
     float open = 0.0;
 #ifdef VAO_SECTION
     vec3 b = cross(n, tx);  // n and b span the section
+    float reach[VAO_STEPS];  // c_i: the cosine weight of the elevations whose reach ends in step i
+    for (int i = 0; i < VAO_STEPS; ++i) {
+        float u0 = float(i) / float(VAO_STEPS), u1 = float(i + 1) / float(VAO_STEPS);
+        reach[i] = (asin(u1) - u1 * sqrt(1.0 - u1 * u1)) - (asin(u0) - u0 * sqrt(1.0 - u0 * u0));
+    }
     float weights = 0.0;
     for (int k = 0; k < VAO_DIRECTIONS; ++k) {
         float phi = (float(k) + 0.5) * (3.14159265 / float(VAO_DIRECTIONS)) - 1.5707963;
         vao_march(pg, cos(phi) * n + sin(phi) * b, qg, t, ds, u_vao_scale * 2.0 * r_h * ds, 3.0, trans);
         float sum = 0.0, before = 1.0;
         for (int i = 0; i < VAO_STEPS; ++i) {
-            float u0 = float(i) / float(VAO_STEPS), u1 = float(i + 1) / float(VAO_STEPS);
-            float c = (asin(u1) - u1 * sqrt(1.0 - u1 * u1)) - (asin(u0) - u0 * sqrt(1.0 - u0 * u0));
-            sum += c * 0.5 * (before + trans[i]);  // the step's mean transmission
+            sum += reach[i] * 0.5 * (before + trans[i]);  // the step's mean transmission
             before = trans[i];
         }
         open += cos(phi) * sum;

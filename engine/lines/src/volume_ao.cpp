@@ -24,7 +24,7 @@ PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b) {
                     "the rays: section = in the tube's cross-section, the rest of the hemisphere integrated as if "
                     "the neighbours ran parallel (bundles; 8 match 16 hemisphere rays against the ray-traced AO); "
                     "hemisphere = a cosine-weighted set over the whole hemisphere, no assumption")
-        .param_int("directions", 8, 1, 64, "ray directions per point")
+        .param_int("directions", 12, 1, 64, "ray directions per point (12 section rays: the ray-traced AO within MAE 0.05 at 1280x720)")
         .param_int("steps", 8, 1, 64, "density samples per ray")
         .param_enum("density_copy", "auto", {"auto", "compute", "upload"},
                     "how the density cells become the 3D texture every frame: compute = a dispatch on the GPU; "
