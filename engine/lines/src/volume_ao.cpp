@@ -22,8 +22,9 @@ PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b) {
                      "1.15 matches the ray-traced AO on the study phantom (see passes/volume_ao/README.md)")
         .param_enum("rays", "section", {"section", "hemisphere"},
                     "the rays: section = in the tube's cross-section, the rest of the hemisphere integrated as if "
-                    "the neighbours ran parallel (bundles; 8 match 16 hemisphere rays against the ray-traced AO); "
-                    "hemisphere = a cosine-weighted set over the whole hemisphere, no assumption")
+                    "the neighbours ran parallel (bundles; phantom 1280x720, 8 rays: MAE 0.059 against the ray-traced "
+                    "AO, 0.067 over the hemisphere); hemisphere = a cosine-weighted set over the whole hemisphere, "
+                    "no assumption")
         .param_int("directions", 12, 1, 64, "ray directions per point (12 section rays: the ray-traced AO within MAE 0.05 at 1280x720)")
         .param_int("steps", 8, 1, 64, "density samples per ray")
         .param_enum("density_copy", "auto", {"auto", "compute", "upload"},
