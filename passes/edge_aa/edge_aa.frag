@@ -7,6 +7,7 @@
 // background, the wall and lines behind all become smooth, and the AO, computed per pixel
 // before, is untouched.
 #include "fullscreen_pass.glsl"
+#include "line_edge_record.glsl"
 
 #ifdef FULLSCREEN_COMPUTE
 layout(rgba8) writeonly uniform image2D u_final;
@@ -16,7 +17,7 @@ layout(location = 0) out vec4 o_color;
 void write_final(ivec2 p, vec4 c) { o_color = c; }
 #endif
 uniform sampler2D u_color;  // the finished image (straight alpha)
-uniform sampler2D u_edge;   // line_edge(): rim direction, distance, line width (not read when disabled)
+uniform sampler2D u_edge;   // the line pass's edge records (line_edge_record.glsl; not read when disabled)
 uniform sampler2D u_depth;  // the G-buffer z-buffer (background 1)
 uniform int u_alpha;        // 0 (opaque): flatten onto the background colour (alpha 1); 1: coverage
 uniform bool u_enabled;     // false: flatten only
@@ -35,7 +36,6 @@ vec4 premultiplied(ivec2 q) {
 float coverage(float inside, float width) {
     return clamp(min(inside + 0.5, width) - max(inside - 0.5, 0.0), 0.0, 1.0);
 }
-float edge_width(vec4 e) { return (e.a - 0.2) * 5.0; }  // inverse of line_edge's alpha
 
 // The pixel step (one axis) closest to direction d.
 ivec2 axis_step(vec2 d) {
@@ -51,17 +51,16 @@ void main() {
         write_final(p, vec4(result.rgb, 1.0));
         return;
     }
-    vec4 e = texelFetch(u_edge, p, 0);
+    LineEdge e = line_edge_decode(texelFetch(u_edge, p, 0));
     float depth = texelFetch(u_depth, p, 0).r;
     // This pixel's own line: its share of the pixel; the rest is the neighbour across the rim.
-    if (e.a > 0.0) {
-        vec2 dir = e.rg * 2.0 - 1.0;
-        float cover = coverage(2.0 * e.b, edge_width(e));
-        ivec2 beyond = clamp(p + axis_step(dir), ivec2(0), size - 1);
+    if (e.line) {
+        float cover = coverage(e.dist, e.width);
+        ivec2 beyond = clamp(p + axis_step(e.dir), ivec2(0), size - 1);
         // Only over what is behind: where the neighbour's surface is in front (a line close
         // behind this pushed-back halo rim, say), that neighbour does not take this line's
         // fringe either, and the edge stays as drawn, so the outline keeps its darkness.
-        if (cover < 1.0 && dot(dir, dir) > 0.25 && texelFetch(u_depth, beyond, 0).r > depth)
+        if (cover < 1.0 && dot(e.dir, e.dir) > 0.25 && texelFetch(u_depth, beyond, 0).r > depth)
             result = mix(premultiplied(beyond), result, cover);
     }
     // The fringes of lines in front whose rims lie within half a pixel of this pixel's centre.
@@ -70,14 +69,12 @@ void main() {
     float cover[4];
     for (int i = 0; i < 4; ++i) {
         ivec2 q = clamp(p + kNeighbours[i], ivec2(0), size - 1);
-        vec4 en = texelFetch(u_edge, q, 0);
-        vec2 dir = en.rg * 2.0 - 1.0;
+        LineEdge en = line_edge_decode(texelFetch(u_edge, q, 0));
         // Signed distance inside q's line at this pixel's centre: moving out along dir lowers it.
-        float inside = 2.0 * en.b - dot(dir, vec2(-kNeighbours[i]));
+        float inside = en.dist - dot(en.dir, vec2(-kNeighbours[i]));
         // A centre inside q's line was rasterised by it (or by what is in front of it, or it is
         // the same line's halo pushed back): only centres outside its rims take a fringe.
-        float width = edge_width(en);
-        float c = en.a > 0.0 && (inside < 0.0 || inside > width) ? coverage(inside, width) : 0.0;
+        float c = en.line && (inside < 0.0 || inside > en.width) ? coverage(inside, en.width) : 0.0;
         // Only a line in front of this pixel's surface covers it.
         cover[i] = c > 0.0 && texelFetch(u_depth, q, 0).r < depth ? c : 0.0;
     }

@@ -118,9 +118,14 @@ public:
         prog_ = &ctx.program({"overlay.vert", "overlay.frag"});
         if (!vao_) glCreateVertexArrays(1, &vao_);  // core profile: a draw needs a bound VAO
         const pathlet::Params& p = ctx.params();
-        const float scale = std::max(ctx.pixel_scale(), 1.0f);  // --ssaa N: drawn at N x, filtered down
-        const float lines = float(ctx.output_size().y) / scale;
-        font_px_ = int(std::lround((p.f("font_px") > 0.0f ? p.f("font_px") : float(auto_font_px(lines))) * scale));
+        // --ssaa N: the overlay is laid out and rasterised for the output picture, each of its
+        // pixels drawn as an N x N block, so the box filter gives back exactly the overlay of a
+        // render without supersampling: it annotates the picture, it is not part of the scene the
+        // supersampled render is a reference for (a glyph rasterised N times larger and filtered
+        // down differs from the font's own small raster by a stroke's width).
+        block_ = std::max(1, int(std::lround(ctx.pixel_scale())));
+        const float lines = float(ctx.output_size().y / block_);
+        font_px_ = int(std::lround(p.f("font_px") > 0.0f ? p.f("font_px") : float(auto_font_px(lines))));
         const std::string font = p.s("font").empty() ? overlay::default_font() : p.s("font");
         if (!raster_ || font != font_file_ || raster_->pixel_size() != font_px_) {
             raster_ = make_raster(font, font_px_);
@@ -179,8 +184,8 @@ public:
         glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         prog_->use();
         glBindVertexArray(vao_);
-        const glm::ivec2 size = ctx.output_size();
-        prog_->set("u_size", glm::vec2(size));
+        prog_->set("u_size", glm::vec2(ctx.output_size()));
+        const glm::ivec2 size = ctx.output_size() / block_;  // the layout's pixels (see setup)
         const glm::vec4 ink(p.v3("text_color"), 1.0f);
         const float m = std::round(0.6f * float(font_px_));  // margin from the image border
 
@@ -214,7 +219,7 @@ public:
             float labels_w = 0.0f;
             for (const Label& l : tick_labels_) labels_w = std::max(labels_w, float(l.width));
             const float block_w = bar_w + tick + gap + labels_w;  // the title may reach further left
-            const glm::vec4 data = data_rect(ctx);  // x0, y0, x1, y1 from the top left
+            const glm::vec4 data = data_rect(ctx) / float(block_);  // x0, y0, x1, y1 from the top left
             const float x0 = std::round(std::clamp(data.z + 1.5f * f, m, float(size.x) - m - block_w));
             const float x1 = x0 + bar_w;
             const float top = m + float(unit_label_.height) + gap;  // room for the title
@@ -226,8 +231,10 @@ public:
             rect(x0, y0, x1, y1);
             for (size_t i = 0; i < ticks_.size(); ++i) {
                 const float y = std::round(y1 - (ticks_[i] - legend_min_) / (legend_max_ - legend_min_) * bar_h);
-                solid(x1, y - 0.5f * std::max(1.0f, std::round(f / 14.0f)), x1 + tick,
-                      y + 0.5f * std::max(1.0f, std::round(f / 14.0f)), ink);
+                // On whole pixels (an odd thickness would end half-way through a row, which the
+                // rasteriser gives to one row, a supersampled render to two).
+                const float thick = std::max(1.0f, std::round(f / 14.0f)), y_top = std::floor(y - 0.5f * thick + 0.5f);
+                solid(x1, y_top, x1 + tick, y_top + thick, ink);
                 const Label& l = tick_labels_[i];
                 text(l, x1 + tick + gap, y - 0.5f * float(l.ascent), ink);
             }
@@ -304,7 +311,7 @@ private:
         return shown;
     }
     void rect(float x0, float y0, float x1, float y1) {
-        prog_->set("u_rect", glm::vec4(x0, y0, x1, y1));
+        prog_->set("u_rect", glm::vec4(x0, y0, x1, y1) * float(block_));
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     }
     void solid(float x0, float y0, float x1, float y1, glm::vec4 c) {
@@ -327,6 +334,7 @@ private:
     std::unique_ptr<overlay::TextRaster> raster_;
     std::string font_file_;
     int font_px_ = 0;
+    int block_ = 1;  // output pixels per layout pixel: the --ssaa factor
     Label time_label_, unit_label_, axis_label_[3];
     std::vector<Label> tick_labels_;  // grows only on setup; Label owns its texture
     std::vector<Label> bundle_labels_;  // the bundles' names, in bundle order

@@ -185,14 +185,13 @@ vec3 line_halo_tint(vec3 color, LineFrag f) {
     return mix(color, u_halo_color, clamp(w, 0.0, 1.0));
 }
 
-// The rim for edge_aa (the line passes' optional `edge` output): rg = 0.5 + 0.5 * outward
-// screen direction, b = distance to the nearer rim in pixels / 2 (clamped to 1), a = 0.2 +
-// 0.8 * width / 4 px (clamped; 0 = no line): the far rim of a thin line bounds its coverage.
-// Near a pathlet's end the end is the edge (its far side is the pathlet's length: a = 1).
+#include "line_edge_record.glsl"
+
+// The edge record for edge_aa (the line passes' optional `edge` output; line_edge_record.glsl):
+// the nearer rim, or near a pathlet's end the end (its far side is the pathlet's length).
 vec4 line_edge(LineFrag f) {
-    if (f.cap_px < f.rim_px) return vec4(0.5 + 0.5 * f.cap_dir, min(f.cap_px * 0.5, 1.0), 1.0);
-    float width_px = 2.0 / f.s_per_px;
-    return vec4(0.5 + 0.5 * f.rim_dir, min(f.rim_px * 0.5, 1.0), 0.2 + 0.8 * min(width_px * 0.25, 1.0));
+    if (f.cap_px < f.rim_px) return line_edge_encode(f.cap_dir, f.cap_px, 4.0);
+    return line_edge_encode(f.rim_dir, f.rim_px, 2.0 / f.s_per_px);
 }
 
 // The share of the pixel the quad covers, box-filtered across the rims (both: a line thinner than

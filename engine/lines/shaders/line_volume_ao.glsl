@@ -3,14 +3,26 @@
 // meeting another tube, estimated from the density the rays pass through. Used per pixel by
 // volume_ao and per fragment by any line pass (line_volume_ao_fragment below, e.g. fill_list's
 // per-layer AO under OIT). The C++ side (pathlet::lines::VolumeAo) sets the uniforms and binds
-// the volume; VAO_DIRECTIONS and VAO_STEPS are compiled in.
+// the volume; VAO_DIRECTIONS, VAO_STEPS and VAO_SECTION (the ray set) are compiled in.
 //
-// Per ray, step i of length ds meets an expected a_i = k (pi r / 2) lambda_i ds tube crossings
-// (lambda: pathlet length per volume; pi r / 2: the mean projected width of a tube of radius r
-// per unit length, Cauchy's formula), and lets 1 - min(1, a_i) of the light through: a crossing
-// within one step is opaque for the share of rays that meet it, as a tube is, where exp(-a) would
-// treat it as fog. The line's own tube is taken out: its share of the density near the point, a
-// Gaussian tube around its axis of the splat kernel's width, is subtracted sample by sample.
+// Per ray, step i of length ds meets an expected a_i = k w lambda_i ds tube crossings (lambda:
+// pathlet length per volume; w: a tube's projected width per unit length) and lets 1 - min(1,
+// a_i) of the light through: a crossing within one step is opaque for the share of rays that meet
+// it, as a tube is, where exp(-a) would treat it as fog. The line's own tube is taken out: its
+// share of the density near the point, a Gaussian tube around its axis of the splat kernel's
+// width, is subtracted sample by sample.
+//
+// Two ray sets. hemisphere: a cosine-weighted Fibonacci set of directions, w = pi r / 2 (the mean
+// over orientations, Cauchy's formula). section (VAO_SECTION): rays in the tube's cross-section
+// only, and the rest of the hemisphere integrated analytically as if the neighbours ran parallel
+// to the line, as they do in a bundle: a ray that leaves the section at elevation e towards the
+// tangent crosses the same tubes as the section's ray in direction phi (w = 2r: a parallel
+// tube's full width), only reaches R cos e into the section, and the cosine weight over (phi, e)
+// is cos(phi) cos^2(e). So AO = 1/pi * sum_phi cos(phi) dphi * sum_i c_i T_i, with T_i the
+// section ray's transmission at step i and c_i = integral of cos^2(e) over the elevations whose
+// reach ends in step i (W(u) = asin(u) - u sqrt(1 - u^2), u = cos e). Eight section rays match
+// 16 hemisphere rays against the ray-traced AO for the cost of 8.
+
 #ifndef PATHLET_LINE_VOLUME_AO_GLSL
 #define PATHLET_LINE_VOLUME_AO_GLSL
 
@@ -46,6 +58,68 @@ vec3 vao_normalize(vec3 v, vec3 fallback) {
     return l2 > 1e-24 ? v * inversesqrt(l2) : fallback;
 }
 
+// The own line's share of the density at grid point x, for a line through grid point qg along t.
+float vao_own(vec3 x, vec3 qg, vec3 t) {
+    vec3 rel = x - qg;
+    float along = dot(rel, t);
+    return kVaoOwnPeak * exp(-kVaoOwnFalloff * max(dot(rel, rel) - along * along, 0.0));
+}
+
+// The transmission of a ray from grid point pg along unit d, VAO_STEPS steps of ds voxels, `rate`
+// crossings per unit of density per step; after each step into trans[i]. own_reach: how far along
+// the ray the own tube's share can matter (a section ray moves away from the axis at least as
+// fast as it advances: beyond 3 voxels the share is below exp(-10)).
+void vao_march(vec3 pg, vec3 d, vec3 qg, vec3 t, float ds, float rate, float own_reach, out float trans[VAO_STEPS]) {
+    float transmit = 1.0;
+    for (int i = 0; i < VAO_STEPS; ++i) {
+        float s = (float(i) + 0.5) * ds;
+        vec3 x = pg + d * s;
+        float lambda = line_density_at(x);
+        if (s < own_reach) lambda -= vao_own(x, qg, t);
+        transmit *= 1.0 - min(1.0, rate * max(lambda, 0.0));
+        trans[i] = transmit;
+    }
+}
+
+// The share of cosine-weighted rays that leave, from grid point pg on a tube with unit normal n,
+// axis through qg along t, tx: t made perpendicular to n.
+float vao_open(vec3 pg, vec3 n, vec3 qg, vec3 t, vec3 tx, float ds, float r_h) {
+    float trans[VAO_STEPS];
+    float open = 0.0;
+#ifdef VAO_SECTION
+    vec3 b = cross(n, tx);  // n and b span the section
+    float reach[VAO_STEPS];  // c_i: the cosine weight of the elevations whose reach ends in step i
+    for (int i = 0; i < VAO_STEPS; ++i) {
+        float u0 = float(i) / float(VAO_STEPS), u1 = float(i + 1) / float(VAO_STEPS);
+        reach[i] = (asin(u1) - u1 * sqrt(1.0 - u1 * u1)) - (asin(u0) - u0 * sqrt(1.0 - u0 * u0));
+    }
+    float weights = 0.0;
+    for (int k = 0; k < VAO_DIRECTIONS; ++k) {
+        float phi = (float(k) + 0.5) * (3.14159265 / float(VAO_DIRECTIONS)) - 1.5707963;
+        vao_march(pg, cos(phi) * n + sin(phi) * b, qg, t, ds, u_vao_scale * 2.0 * r_h * ds, 3.0, trans);
+        float sum = 0.0, before = 1.0;
+        for (int i = 0; i < VAO_STEPS; ++i) {
+            sum += reach[i] * 0.5 * (before + trans[i]);  // the step's mean transmission
+            before = trans[i];
+        }
+        open += cos(phi) * sum;
+        weights += cos(phi) * 1.5707963;  // the c_i add up to pi / 2
+    }
+    return open / weights;
+#else
+    vec3 ty = cross(n, tx);
+    for (int k = 0; k < VAO_DIRECTIONS; ++k) {
+        // Cosine-weighted Fibonacci set: uniform in the projected disc, a golden angle apart.
+        float rr = sqrt((float(k) + 0.5) / float(VAO_DIRECTIONS));
+        float phi = float(k) * 2.3999632;
+        vao_march(pg, rr * cos(phi) * tx + rr * sin(phi) * ty + sqrt(1.0 - rr * rr) * n, qg, t, ds,
+                  u_vao_scale * 1.5707963 * r_h * ds, 1e30, trans);
+        open += trans[VAO_STEPS - 1];
+    }
+    return open / float(VAO_DIRECTIONS);
+#endif
+}
+
 // p: the point, n: its unit normal, q: a point on its own line's axis, t: the line's unit
 // tangent; all in world space. Returns 1 (open) .. 0 (occluded).
 float line_volume_ao_world(vec3 p, vec3 n, vec3 q, vec3 t) {
@@ -53,38 +127,14 @@ float line_volume_ao_world(vec3 p, vec3 n, vec3 q, vec3 t) {
     vec3 pg = line_density_grid(p), qg = line_density_grid(q);
     // Ray frame around the normal, turned with the line (stable as the line moves on screen).
     vec3 tx = vao_normalize(t - dot(t, n) * n, vao_normalize(cross(n, abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)), n));
-    vec3 ty = cross(n, tx);
-    float ds = u_vao_reach * inv_h / float(VAO_STEPS);              // step in voxels
-    float rate = u_vao_scale * 1.5707963 * u_vao_radius * inv_h * ds;  // crossings per voxel length
-    float open = 0.0;
-    for (int k = 0; k < VAO_DIRECTIONS; ++k) {
-        // Cosine-weighted Fibonacci set: uniform in the projected disc, a golden angle apart.
-        float rr = sqrt((float(k) + 0.5) / float(VAO_DIRECTIONS));
-        float phi = float(k) * 2.3999632;
-        vec3 d = rr * cos(phi) * tx + rr * sin(phi) * ty + sqrt(1.0 - rr * rr) * n;
-        float transmit = 1.0;
-        for (int i = 0; i < VAO_STEPS; ++i) {
-            vec3 x = pg + d * ((float(i) + 0.5) * ds);
-            vec3 rel = x - qg;
-            float along = dot(rel, t);
-            float own = kVaoOwnPeak * exp(-kVaoOwnFalloff * max(dot(rel, rel) - along * along, 0.0));
-            float lambda = max(line_density_at(x) - own, 0.0);
-            transmit *= 1.0 - min(1.0, rate * lambda);
-        }
-        open += transmit;
-    }
-    // The point itself may lie inside another line's tube (pathlets that overlap, or a point the
-    // G-buffer's approximate tube depth puts inside a neighbour): then nothing is open. Its
-    // chance is the other tubes' volume fraction there, pi r^2 lambda (Poisson). The own line
-    // is taken out 1.5 times here, where its share is largest and least certain: an isolated
-    // line must stay open.
-    vec3 rel0 = pg - qg;
-    float along0 = dot(rel0, t);
-    float own0 = kVaoOwnPeak * exp(-kVaoOwnFalloff * max(dot(rel0, rel0) - along0 * along0, 0.0));
-    float others = max(line_density_at(pg) - 1.5 * own0, 0.0);
     float r_h = u_vao_radius * inv_h;
-    float outside = exp(-3.14159265 * r_h * r_h * others);
-    return outside * open * (1.0 / float(VAO_DIRECTIONS));
+    float open = vao_open(pg, n, qg, t, tx, u_vao_reach * inv_h / float(VAO_STEPS), r_h);
+    // The point itself may lie inside another line's tube (pathlets that overlap, or a
+    // neighbour's halo pushed back behind this line): then nothing is open. Its chance is the
+    // other tubes' volume fraction there, pi r^2 lambda (Poisson). The own line is taken out 1.5
+    // times here, where its share is largest and least certain: an isolated line must stay open.
+    float others = max(line_density_at(pg) - 1.5 * vao_own(pg, qg, t), 0.0);
+    return exp(-3.14159265 * r_h * r_h * others) * open;
 }
 
 // The same from view-space values (the G-buffer's and the kit's fragment space).

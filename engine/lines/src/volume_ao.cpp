@@ -20,7 +20,12 @@ PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b) {
         .param_float("ao_scale", 1.15, 0.0, 10.0,
                      "k, the calibration of the crossing rate: 1 counts pathlets as randomly oriented tubes; "
                      "1.15 matches the ray-traced AO on the study phantom (see passes/volume_ao/README.md)")
-        .param_int("directions", 8, 1, 64, "cosine-weighted ray directions per point")
+        .param_enum("rays", "section", {"section", "hemisphere"},
+                    "the rays: section = in the tube's cross-section, the rest of the hemisphere integrated as if "
+                    "the neighbours ran parallel (bundles; phantom 1280x720, 8 rays: MAE 0.059 against the ray-traced "
+                    "AO, 0.067 over the hemisphere); hemisphere = a cosine-weighted set over the whole hemisphere, "
+                    "no assumption")
+        .param_int("directions", 12, 1, 64, "ray directions per point (12 section rays: the ray-traced AO within MAE 0.05 at 1280x720)")
         .param_int("steps", 8, 1, 64, "density samples per ray")
         .param_enum("density_copy", "auto", {"auto", "compute", "upload"},
                     "how the density cells become the 3D texture every frame: compute = a dispatch on the GPU; "
@@ -43,6 +48,7 @@ std::vector<std::string> VolumeAo::defines(const PassContext& ctx) {
     std::vector<std::string> d = density_defines(ctx);
     d.push_back("VAO_DIRECTIONS " + std::to_string(p.i("directions")));
     d.push_back("VAO_STEPS " + std::to_string(p.i("steps")));
+    if (p.s("rays") == "section") d.push_back("VAO_SECTION");
     return d;
 }
 
