@@ -211,7 +211,9 @@ TEST(Oit, ResolveRefusesPinsThatDoNotGoTogether) {
         const std::string path = scratch() + "/resolve_bad.json";
         std::ofstream(path) << text;
         try {
-            render(path, {"line_width=1.2", "window=3"}, {"final"});
+            // resolve_list's line width as fill_list's, which the records it reads need (the compiler
+            // checks that first): what is refused here is the pins.
+            render(path, {"line_width=1.2", "window=3", "resolve_list.line_width=1.2"}, {"final"});
         } catch (const std::exception& e) {
             return std::string(e.what());
         }
