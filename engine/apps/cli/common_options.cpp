@@ -55,7 +55,9 @@ io::LoadOptions ArrayOptions::load_options() const {
 void SceneOptions::declare(Args& a) {
     a.option("data", data, "FILE", "pathlines: .vtk (legacy), .vtp, .pathlet, text rows 'x y z x y z ...', or tracts .trk/.tck")
         .option("mesh", mesh, "FILE", "vessel wall: .gltf/.glb, .stl or .obj (optional)")
-        .option("phantom", phantom, "study|small", "built-in aortic-arch phantom used when --data is not given");
+        .option("phantom", phantom, "study|small[:density=N]",
+                "built-in aortic-arch phantom used when --data is not given; ':density=N' makes it N times\n"
+                "denser (N x the lines: more seeds, the same vessel and time; deterministic, cached)");
     arrays.declare(a);
 }
 

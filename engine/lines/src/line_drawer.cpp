@@ -128,6 +128,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     if (pathlets_.empty()) pathlets_.push_back(glm::vec4(0.0f));  // a buffer of size 0 cannot be bound
     upload(buffer_, capacity_, pathlets_.data(), pathlets_.size() * sizeof(glm::vec4));
     prog.bind_texture("u_line_pathlets", pathlets_view_.of({buffer_, capacity_}, GL_RGBA32F));
+    scene.bind_points(prog);
 
     // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
     // or scale (orthographic), for the pass's output height.

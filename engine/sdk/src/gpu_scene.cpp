@@ -1,24 +1,25 @@
 #include <pathlet/gpu_scene.hpp>
+#include <pathlet/shader.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
 
 namespace pathlet {
 
 namespace {
-struct LineVertex {
-    glm::vec3 position;
+// attributes_buffer(): one RGB32F texel a point (scene_points.glsl: u_scene_point_data).
+struct PointAttributes {
     float time;
-    glm::vec3 velocity;
-    glm::vec3 tangent;
     int32_t line_id;
-    float arc;  // arc length from the line's first point
+    float speed;
 };
-static_assert(sizeof(LineVertex) == GpuScene::kLineVertexBytes);
-static_assert(sizeof(LineVertex) == GpuScene::kPointFloats * sizeof(float));
-static_assert(offsetof(LineVertex, position) == GpuScene::kPositionFloat * sizeof(float));
-static_assert(offsetof(LineVertex, time) == GpuScene::kTimeFloat * sizeof(float));
+static_assert(sizeof(PointAttributes) == 12);
+// points_buffer(), quantised: RGBA16 (unorm) texels of x, y, z and the arc length; exact: RGBA32F.
+size_t position_bytes(GpuScene::PointLayout l) { return 4 * (l == GpuScene::PointLayout::exact ? sizeof(float) : sizeof(uint16_t)); }
 
 // A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last; uint line; uvec3 pad;} lays it out.
 struct GpuChunk {
@@ -39,23 +40,42 @@ GLuint immutable_buffer(const void* data, size_t bytes) {
     return b;
 }
 
-glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
-    float l = glm::length(v);
-    return l > 1e-12f ? v / l : fallback;
+// The 16-bit code of x in [lo, lo + extent]: nearest, clamped (a non-finite x: 0).
+uint16_t quantise(float x, float lo, float extent) {
+    const float f = (x - lo) / extent * 65535.0f;
+    return std::isfinite(f) ? uint16_t(std::clamp(std::lround(f), 0l, 65535l)) : 0;
 }
 }  // namespace
+
+GpuScene::PointLayout GpuScene::default_point_layout() {
+    const char* e = std::getenv("PATHLET_POINT_LAYOUT");
+    if (!e || !*e || std::strcmp(e, "quantised") == 0) return PointLayout::quantised;
+    if (std::strcmp(e, "exact") == 0) return PointLayout::exact;
+    throw std::invalid_argument(std::string("PATHLET_POINT_LAYOUT='") + e + "': expected quantised or exact");
+}
+
+GpuScene::PointMemory GpuScene::point_memory(size_t points, size_t chunks, PointLayout layout) {
+    PointMemory m;
+    m.points = points;
+    m.chunks = chunks;
+    m.positions = points * position_bytes(layout);
+    m.attributes = points * sizeof(PointAttributes);
+    m.lod = points * sizeof(float);
+    m.chunk_boxes = chunks * kGpuChunkBytes;
+    return m;
+}
 
 GpuScene::~GpuScene() { release(); }
 
 void GpuScene::release() {
     if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
-    if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
-    if (points_tex_) glDeleteTextures(1, &points_tex_);
-    if (chunk_buffer_) glDeleteBuffers(1, &chunk_buffer_);
-    if (lod_buffer_) glDeleteBuffers(1, &lod_buffer_);
-    if (position_buffer_) glDeleteBuffers(1, &position_buffer_);
+    const GLuint textures[] = {points_tex_, attributes_tex_};
+    glDeleteTextures(2, textures);
+    const GLuint buffers[] = {points_buffer_, attributes_buffer_, chunk_buffer_, lod_buffer_};
+    glDeleteBuffers(4, buffers);
     mesh_.release();
-    line_vao_ = line_vbo_ = points_tex_ = chunk_buffer_ = lod_buffer_ = position_buffer_ = 0;
+    line_vao_ = points_buffer_ = attributes_buffer_ = points_tex_ = attributes_tex_ = chunk_buffer_ = lod_buffer_ = 0;
+    point_count_ = 0;
 }
 
 void GpuMesh::release() {
@@ -94,9 +114,10 @@ void GpuMesh::upload(const Mesh& mesh) {
     count_ = GLsizei(m.index.size());
 }
 
-void GpuScene::upload(const Scene& scene) {
+void GpuScene::upload(const Scene& scene, PointLayout layout) {
     release();
     cpu_ = &scene;
+    layout_ = layout;
     const Pathlines& pl = scene.lines;
     bounds_ = scene.bounds();
     tmin_ = pl.time_min();
@@ -127,26 +148,7 @@ void GpuScene::upload(const Scene& scene) {
         }
     }
 
-    // Interleave once; the tangent is the central difference (one-sided at the ends), so the
-    // geometry shader gets smooth joins without adjacency primitives.
-    std::vector<LineVertex> v(pl.position.size());
-    arc_.assign(pl.position.size(), 0.0f);
-    for (size_t li = 0; li < pl.lines.size(); ++li) {
-        const LineRange r = pl.lines[li];
-        double arc = 0.0;
-        for (uint32_t k = 0; k < r.count; ++k) {
-            size_t i = r.first + k;
-            size_t a = r.first + (k > 0 ? k - 1 : 0), b = r.first + std::min(k + 1, r.count - 1);
-            if (k > 0) {
-                float step = glm::length(pl.position[i] - pl.position[i - 1]);
-                if (std::isfinite(step)) arc += step;  // a bad point adds nothing, never NaN
-            }
-            arc_[i] = float(arc);
-            glm::vec3 vel = i < pl.velocity.size() ? pl.velocity[i] : glm::vec3(0);
-            v[i] = {pl.position[i], i < pl.time.size() ? pl.time[i] : 0.0f, vel,
-                    safe_normalize(pl.position[b] - pl.position[a], glm::vec3(1, 0, 0)), int32_t(li), arc_[i]};
-        }
-    }
+    upload_points(pl);
     lod_.build(pl, smax_ - smin_);
     chunks_.build(pl);
     {
@@ -159,31 +161,88 @@ void GpuScene::upload(const Scene& scene) {
             }
         chunk_buffer_ = immutable_buffer(gc.data(), gc.size() * sizeof(GpuChunk));
         lod_buffer_ = immutable_buffer(lod_.keep().data(), lod_.keep().size() * sizeof(float));
-        static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-        position_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
     }
-    glCreateBuffers(1, &line_vbo_);
-    glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
-                         v.empty() ? nullptr : v.data(), 0);
+    if (scene.mesh && !scene.mesh->empty()) mesh_.upload(*scene.mesh);
+}
+
+// The two point buffers, their buffer textures and the VAO over the attributes.
+void GpuScene::upload_points(const Pathlines& pl) {
+    point_count_ = pl.position.size();
+    std::vector<PointAttributes> attr(pl.position.size());
+    arc_.assign(pl.position.size(), 0.0f);
+    for (size_t li = 0; li < pl.lines.size(); ++li) {
+        const LineRange r = pl.lines[li];
+        double arc = 0.0;
+        for (uint32_t k = 0; k < r.count; ++k) {
+            const size_t i = r.first + k;
+            if (k > 0) {
+                float step = glm::length(pl.position[i] - pl.position[i - 1]);
+                if (std::isfinite(step)) arc += step;  // a bad point adds nothing, never NaN
+            }
+            arc_[i] = float(arc);
+            const glm::vec3 vel = i < pl.velocity.size() ? pl.velocity[i] : glm::vec3(0);
+            attr[i] = {i < pl.time.size() ? pl.time[i] : 0.0f, int32_t(li), glm::length(vel)};
+        }
+    }
+    attributes_buffer_ = immutable_buffer(attr.data(), attr.size() * sizeof(PointAttributes));
+    attr = {};
+
+    // The box of the lines' finite points (not the scene's, which holds the wall too), and the
+    // longest line's arc length.
+    const Bounds b = pl.bounds();
+    points_origin_ = glm::vec4(0.0f);
+    points_extent_ = glm::vec4(1.0f);
+    if (layout_ == PointLayout::exact) {
+        std::vector<glm::vec4> p(pl.position.size());
+        for (size_t i = 0; i < p.size(); ++i) p[i] = glm::vec4(pl.position[i], arc_[i]);
+        points_buffer_ = immutable_buffer(p.data(), p.size() * sizeof(glm::vec4));
+    } else {
+        if (b.valid()) points_origin_ = glm::vec4(b.lo, 0.0f), points_extent_ = glm::vec4(b.hi - b.lo, 0.0f);
+        points_extent_.w = arc_.empty() ? 0.0f : *std::max_element(arc_.begin(), arc_.end());
+        points_extent_ = glm::max(points_extent_, glm::vec4(1e-30f));
+        std::vector<Quantised> q(pl.position.size());
+        static_assert(sizeof(Quantised) == 4 * sizeof(uint16_t));
+        for (size_t i = 0; i < q.size(); ++i) q[i] = quantised(glm::vec4(pl.position[i], arc_[i]));
+        points_buffer_ = immutable_buffer(q.data(), q.size() * sizeof(Quantised));
+    }
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &points_tex_);
-    glTextureBuffer(points_tex_, GL_R32F, line_vbo_);
+    glTextureBuffer(points_tex_, layout_ == PointLayout::exact ? GL_RGBA32F : GL_RGBA16, points_buffer_);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &attributes_tex_);
+    glTextureBuffer(attributes_tex_, GL_RGB32F, attributes_buffer_);
+
     glCreateVertexArrays(1, &line_vao_);
-    glVertexArrayVertexBuffer(line_vao_, 0, line_vbo_, 0, sizeof(LineVertex));
-    auto attrib = [&](GLuint loc, GLint n, GLuint offset) {
+    glVertexArrayVertexBuffer(line_vao_, 0, attributes_buffer_, 0, sizeof(PointAttributes));
+    auto attrib = [&](GLuint loc, GLuint offset) {
         glEnableVertexArrayAttrib(line_vao_, loc);
-        glVertexArrayAttribFormat(line_vao_, loc, n, GL_FLOAT, GL_FALSE, offset);
+        glVertexArrayAttribFormat(line_vao_, loc, 1, GL_FLOAT, GL_FALSE, offset);
         glVertexArrayAttribBinding(line_vao_, loc, 0);
     };
-    attrib(0, 3, offsetof(LineVertex, position));
-    attrib(1, 1, offsetof(LineVertex, time));
-    attrib(2, 3, offsetof(LineVertex, velocity));
-    attrib(3, 3, offsetof(LineVertex, tangent));
-    glEnableVertexArrayAttrib(line_vao_, 4);
-    glVertexArrayAttribIFormat(line_vao_, 4, 1, GL_INT, offsetof(LineVertex, line_id));
-    glVertexArrayAttribBinding(line_vao_, 4, 0);
-    attrib(5, 1, offsetof(LineVertex, arc));
+    attrib(0, offsetof(PointAttributes, time));
+    glEnableVertexArrayAttrib(line_vao_, 1);
+    glVertexArrayAttribIFormat(line_vao_, 1, 1, GL_INT, offsetof(PointAttributes, line_id));
+    glVertexArrayAttribBinding(line_vao_, 1, 0);
+    attrib(2, offsetof(PointAttributes, speed));
+}
 
-    if (scene.mesh && !scene.mesh->empty()) mesh_.upload(*scene.mesh);
+GpuScene::Quantised GpuScene::quantised(glm::vec4 p) const {
+    Quantised q;
+    for (int a = 0; a < 4; ++a) q[a] = quantise(p[a], points_origin_[a], points_extent_[a]);
+    return q;
+}
+
+glm::vec4 GpuScene::stored_point(size_t i) const {
+    const glm::vec4 p(cpu_->lines.position[i], arc_[i]);
+    if (layout_ == PointLayout::exact) return p;
+    const Quantised q = quantised(p);
+    return points_origin_ + glm::vec4(q[0], q[1], q[2], q[3]) / 65535.0f * points_extent_;
+}
+
+void GpuScene::bind_points(const ShaderProgram& prog) const {
+    if (prog.declares("u_scene_points")) prog.bind_texture("u_scene_points", points_tex_);
+    if (prog.declares("u_scene_point_data")) prog.bind_texture("u_scene_point_data", attributes_tex_);
+    if (prog.declares("u_scene_points_origin")) prog.set("u_scene_points_origin", points_origin_);
+    if (prog.declares("u_scene_points_extent")) prog.set("u_scene_points_extent", points_extent_);
+    if (prog.declares("u_scene_points_quantised")) prog.set("u_scene_points_quantised", layout_ == PointLayout::quantised ? 1 : 0);
 }
 
 void GpuScene::ranges(double t0, double t1, Ranges& out) const {
