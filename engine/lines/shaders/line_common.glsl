@@ -32,7 +32,8 @@ vec3 line_data_position(vec3 pos_view) { return transpose(mat3(u_view)) * (pos_v
 #include "scene_points.glsl"
 layout(location = 0) in float a_time;  // GpuScene::line_vao()
 layout(location = 1) in int a_line_id;
-layout(location = 2) in float a_speed;
+layout(location = 2) in float a_speed;  // times u_scene_point_scale.x
+layout(location = 3) in float a_arc;    // times u_scene_point_scale.y
 out LineVertex { LINE_VERTEX_MEMBERS } v_out;
 
 // View-space point and tangent, once per point (a point is shared by two segments, and
@@ -44,11 +45,10 @@ void line_vertex() {
     const int prev = max(i - 1, 0), next = min(i + 1, scene_point_count() - 1);
     const int a = scene_point_line(prev) == a_line_id ? prev : i;
     const int b = scene_point_line(next) == a_line_id ? next : i;
-    const vec4 point = scene_point(i);
-    v_out.position = (u_view * vec4(point.xyz, 1.0)).xyz;
+    v_out.position = (u_view * vec4(scene_point_position(i), 1.0)).xyz;
     v_out.time = a_time;
-    v_out.speed = a_speed;
-    v_out.arc = point.w;
+    v_out.speed = a_speed * u_scene_point_scale.x;
+    v_out.arc = a_arc * u_scene_point_scale.y;
     v_out.tangent = mat3(u_view) * line_safe_normalize(scene_point_position(b) - scene_point_position(a), vec3(1, 0, 0));
     v_out.line_id = a_line_id;
     v_out.point = i;

@@ -1,5 +1,5 @@
 // The scene's line points on the GPU (GpuScene): the memory reported is the buffers' sizes, the
-// quantised positions are decoded within half a step of the lines' own box, and every line
+// quantised positions are decoded within a step of the lines' own box, and every line
 // pipeline draws the same picture from them as from exact floats (within 1/255).
 #include "frame_capture.hpp"
 #include "golden.hpp"
@@ -93,7 +93,7 @@ TEST(points, QuantisedPositionsAreWithinHalfAStepOfTheLinesBox) {
     GpuScene gpu;
     gpu.upload(scene, GpuScene::PointLayout::quantised);
     const Bounds b = scene.lines.bounds();
-    const glm::vec3 step = (b.hi - b.lo) / 65535.0f;
+    const glm::vec3 step = (b.hi - b.lo) / float((1 << 21) - 1);
     glm::vec3 worst(0.0f);
     float longest = 0.0f, worst_arc = 0.0f;
     std::vector<float> arc(scene.lines.point_count(), 0.0f);
@@ -105,7 +105,8 @@ TEST(points, QuantisedPositionsAreWithinHalfAStepOfTheLinesBox) {
         worst = glm::max(worst, glm::abs(glm::vec3(p) - scene.lines.position[i]) / step);
         worst_arc = std::max(worst_arc, std::abs(p.w - arc[i]) / (longest / 65535.0f));
     }
-    for (int a = 0; a < 3; ++a) EXPECT_LE(worst[a], 0.5f + 1e-3f) << "axis " << a << ": steps of the lines' box";
+    // Half a step, and the float arithmetic of the decoding (a few float steps at the box's far side).
+    for (int a = 0; a < 3; ++a) EXPECT_LE(worst[a], 0.75f) << "axis " << a << ": steps of the lines' box";
     EXPECT_LE(worst_arc, 0.5f + 1e-2f) << "steps of the longest line's arc length";
     GpuScene exact;
     exact.upload(scene, GpuScene::PointLayout::exact);

@@ -1,7 +1,10 @@
 #include <pathlet/gpu_scene.hpp>
 #include <pathlet/shader.hpp>
 
+#include <glm/gtc/packing.hpp>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -11,15 +14,37 @@
 namespace pathlet {
 
 namespace {
-// attributes_buffer(): one RGB32F texel a point (scene_points.glsl: u_scene_point_data).
-struct PointAttributes {
+// attributes_buffer(), a texel (RGB32F / RGBA32F) and a vertex a point: time, line id, speed and
+// arc length; quantised, the speed as a half float (of speed / speed step) and the arc length as
+// 16 bits of the longest line's, in one word.
+struct QuantisedAttributes {
+    float time;
+    int32_t line_id;
+    uint16_t speed;
+    uint16_t arc;
+};
+struct ExactAttributes {
     float time;
     int32_t line_id;
     float speed;
+    float arc;
 };
-static_assert(sizeof(PointAttributes) == 12);
-// points_buffer(), quantised: RGBA16 (unorm) texels of x, y, z and the arc length; exact: RGBA32F.
-size_t position_bytes(GpuScene::PointLayout l) { return 4 * (l == GpuScene::PointLayout::exact ? sizeof(float) : sizeof(uint16_t)); }
+static_assert(sizeof(QuantisedAttributes) == 12 && sizeof(ExactAttributes) == 16);
+// points_buffer(), quantised: two words a point, x, y, z of 21 bits each (RG32UI texels);
+// exact: the floats' bits (RGB32UI).
+constexpr uint32_t kAxisSteps = (1u << 21) - 1;
+using PackedPosition = std::array<uint32_t, 2>;
+size_t position_bytes(GpuScene::PointLayout l) { return l == GpuScene::PointLayout::exact ? 3 * sizeof(float) : sizeof(PackedPosition); }
+size_t attribute_bytes(GpuScene::PointLayout l) {
+    return l == GpuScene::PointLayout::exact ? sizeof(ExactAttributes) : sizeof(QuantisedAttributes);
+}
+
+// The code of x in steps of `step` from lo: nearest, clamped to [0, top] (a non-finite x: 0).
+uint32_t quantise(float x, float lo, float step, uint32_t top) {
+    const double f = (double(x) - double(lo)) / double(step);
+    return std::isfinite(f) ? uint32_t(std::clamp(std::llround(f), 0ll, (long long)top)) : 0u;
+}
+PackedPosition pack(glm::uvec3 q) { return {q.x | (q.y << 21), (q.y >> 11) | (q.z << 10)}; }
 
 // A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last; uint line; uvec3 pad;} lays it out.
 struct GpuChunk {
@@ -40,11 +65,6 @@ GLuint immutable_buffer(const void* data, size_t bytes) {
     return b;
 }
 
-// The 16-bit code of x in [lo, lo + extent]: nearest, clamped (a non-finite x: 0).
-uint16_t quantise(float x, float lo, float extent) {
-    const float f = (x - lo) / extent * 65535.0f;
-    return std::isfinite(f) ? uint16_t(std::clamp(std::lround(f), 0l, 65535l)) : 0;
-}
 }  // namespace
 
 GpuScene::PointLayout GpuScene::default_point_layout() {
@@ -59,7 +79,7 @@ GpuScene::PointMemory GpuScene::point_memory(size_t points, size_t chunks, Point
     m.points = points;
     m.chunks = chunks;
     m.positions = points * position_bytes(layout);
-    m.attributes = points * sizeof(PointAttributes);
+    m.attributes = points * attribute_bytes(layout);
     m.lod = points * sizeof(float);
     m.chunk_boxes = chunks * kGpuChunkBytes;
     return m;
@@ -168,10 +188,11 @@ void GpuScene::upload(const Scene& scene, PointLayout layout) {
 // The two point buffers, their buffer textures and the VAO over the attributes.
 void GpuScene::upload_points(const Pathlines& pl) {
     point_count_ = pl.position.size();
-    std::vector<PointAttributes> attr(pl.position.size());
+    const bool exact = layout_ == PointLayout::exact;
+    std::vector<float> speed(pl.position.size(), 0.0f);
     arc_.assign(pl.position.size(), 0.0f);
-    for (size_t li = 0; li < pl.lines.size(); ++li) {
-        const LineRange r = pl.lines[li];
+    float longest = 0.0f, fastest = 0.0f;
+    for (const LineRange& r : pl.lines) {
         double arc = 0.0;
         for (uint32_t k = 0; k < r.count; ++k) {
             const size_t i = r.first + k;
@@ -180,69 +201,89 @@ void GpuScene::upload_points(const Pathlines& pl) {
                 if (std::isfinite(step)) arc += step;  // a bad point adds nothing, never NaN
             }
             arc_[i] = float(arc);
-            const glm::vec3 vel = i < pl.velocity.size() ? pl.velocity[i] : glm::vec3(0);
-            attr[i] = {i < pl.time.size() ? pl.time[i] : 0.0f, int32_t(li), glm::length(vel)};
+            speed[i] = i < pl.velocity.size() ? glm::length(pl.velocity[i]) : 0.0f;
+            longest = std::max(longest, arc_[i]);
+            if (std::isfinite(speed[i])) fastest = std::max(fastest, speed[i]);
         }
     }
-    attributes_buffer_ = immutable_buffer(attr.data(), attr.size() * sizeof(PointAttributes));
-    attr = {};
-
-    // The box of the lines' finite points (not the scene's, which holds the wall too), and the
-    // longest line's arc length.
+    // Steps: the lines' box (not the scene's, which holds the wall too) in 2^21 - 1, the longest
+    // line's arc length in 65535; the speed a half float, scaled by a power of two beyond 32768.
     const Bounds b = pl.bounds();
-    points_origin_ = glm::vec4(0.0f);
-    points_extent_ = glm::vec4(1.0f);
-    if (layout_ == PointLayout::exact) {
-        std::vector<glm::vec4> p(pl.position.size());
-        for (size_t i = 0; i < p.size(); ++i) p[i] = glm::vec4(pl.position[i], arc_[i]);
-        points_buffer_ = immutable_buffer(p.data(), p.size() * sizeof(glm::vec4));
+    points_origin_ = glm::vec3(0.0f);
+    points_step_ = glm::vec3(1.0f);
+    arc_step_ = speed_step_ = 1.0f;
+    if (!exact) {
+        if (b.valid()) points_origin_ = b.lo, points_step_ = glm::max((b.hi - b.lo) / float(kAxisSteps), glm::vec3(1e-30f));
+        arc_step_ = std::max(longest / 65535.0f, 1e-30f);
+        while (fastest / speed_step_ > 32768.0f) speed_step_ *= 2.0f;
+    }
+    const auto time_of = [&](size_t i) { return i < pl.time.size() ? pl.time[i] : 0.0f; };
+    std::vector<int32_t> line_of(pl.position.size(), 0);
+    for (size_t li = 0; li < pl.lines.size(); ++li)
+        std::fill_n(line_of.begin() + pl.lines[li].first, pl.lines[li].count, int32_t(li));
+    if (exact) {
+        std::vector<ExactAttributes> attr(pl.position.size());
+        for (size_t i = 0; i < attr.size(); ++i) attr[i] = {time_of(i), line_of[i], speed[i], arc_[i]};
+        attributes_buffer_ = immutable_buffer(attr.data(), attr.size() * sizeof(ExactAttributes));
+        static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+        points_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
     } else {
-        if (b.valid()) points_origin_ = glm::vec4(b.lo, 0.0f), points_extent_ = glm::vec4(b.hi - b.lo, 0.0f);
-        points_extent_.w = arc_.empty() ? 0.0f : *std::max_element(arc_.begin(), arc_.end());
-        points_extent_ = glm::max(points_extent_, glm::vec4(1e-30f));
-        std::vector<Quantised> q(pl.position.size());
-        static_assert(sizeof(Quantised) == 4 * sizeof(uint16_t));
-        for (size_t i = 0; i < q.size(); ++i) q[i] = quantised(glm::vec4(pl.position[i], arc_[i]));
-        points_buffer_ = immutable_buffer(q.data(), q.size() * sizeof(Quantised));
+        std::vector<QuantisedAttributes> attr(pl.position.size());
+        for (size_t i = 0; i < attr.size(); ++i)
+            attr[i] = {time_of(i), line_of[i], uint16_t(glm::packHalf1x16(speed[i] / speed_step_)),
+                       uint16_t(quantise(arc_[i], 0.0f, arc_step_, 65535))};
+        attributes_buffer_ = immutable_buffer(attr.data(), attr.size() * sizeof(QuantisedAttributes));
+        std::vector<PackedPosition> q(pl.position.size());
+        for (size_t i = 0; i < q.size(); ++i) q[i] = pack(quantised(pl.position[i]));
+        points_buffer_ = immutable_buffer(q.data(), q.size() * sizeof(PackedPosition));
     }
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &points_tex_);
-    glTextureBuffer(points_tex_, layout_ == PointLayout::exact ? GL_RGBA32F : GL_RGBA16, points_buffer_);
+    glTextureBuffer(points_tex_, exact ? GL_RGB32UI : GL_RG32UI, points_buffer_);
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &attributes_tex_);
-    glTextureBuffer(attributes_tex_, GL_RGB32F, attributes_buffer_);
+    glTextureBuffer(attributes_tex_, exact ? GL_RGBA32F : GL_RGB32F, attributes_buffer_);
 
     glCreateVertexArrays(1, &line_vao_);
-    glVertexArrayVertexBuffer(line_vao_, 0, attributes_buffer_, 0, sizeof(PointAttributes));
-    auto attrib = [&](GLuint loc, GLuint offset) {
+    glVertexArrayVertexBuffer(line_vao_, 0, attributes_buffer_, 0, GLsizei(attribute_bytes(layout_)));
+    auto attrib = [&](GLuint loc, GLenum type, GLboolean normalized, GLuint offset) {
         glEnableVertexArrayAttrib(line_vao_, loc);
-        glVertexArrayAttribFormat(line_vao_, loc, 1, GL_FLOAT, GL_FALSE, offset);
+        glVertexArrayAttribFormat(line_vao_, loc, 1, type, normalized, offset);
         glVertexArrayAttribBinding(line_vao_, loc, 0);
     };
-    attrib(0, offsetof(PointAttributes, time));
+    attrib(0, GL_FLOAT, GL_FALSE, offsetof(ExactAttributes, time));
     glEnableVertexArrayAttrib(line_vao_, 1);
-    glVertexArrayAttribIFormat(line_vao_, 1, 1, GL_INT, offsetof(PointAttributes, line_id));
+    glVertexArrayAttribIFormat(line_vao_, 1, 1, GL_INT, offsetof(ExactAttributes, line_id));
     glVertexArrayAttribBinding(line_vao_, 1, 0);
-    attrib(2, offsetof(PointAttributes, speed));
+    if (exact) {
+        attrib(2, GL_FLOAT, GL_FALSE, offsetof(ExactAttributes, speed));
+        attrib(3, GL_FLOAT, GL_FALSE, offsetof(ExactAttributes, arc));
+    } else {
+        attrib(2, GL_HALF_FLOAT, GL_FALSE, offsetof(QuantisedAttributes, speed));
+        attrib(3, GL_UNSIGNED_SHORT, GL_TRUE, offsetof(QuantisedAttributes, arc));
+    }
 }
 
-GpuScene::Quantised GpuScene::quantised(glm::vec4 p) const {
-    Quantised q;
-    for (int a = 0; a < 4; ++a) q[a] = quantise(p[a], points_origin_[a], points_extent_[a]);
+glm::uvec3 GpuScene::quantised(glm::vec3 p) const {
+    glm::uvec3 q;
+    for (int a = 0; a < 3; ++a) q[a] = quantise(p[a], points_origin_[a], points_step_[a], kAxisSteps);
     return q;
 }
 
 glm::vec4 GpuScene::stored_point(size_t i) const {
-    const glm::vec4 p(cpu_->lines.position[i], arc_[i]);
-    if (layout_ == PointLayout::exact) return p;
-    const Quantised q = quantised(p);
-    return points_origin_ + glm::vec4(q[0], q[1], q[2], q[3]) / 65535.0f * points_extent_;
+    const glm::vec3 p = cpu_->lines.position[i];
+    if (layout_ == PointLayout::exact) return glm::vec4(p, arc_[i]);
+    const float arc = float(quantise(arc_[i], 0.0f, arc_step_, 65535)) * arc_step_;
+    return glm::vec4(points_origin_ + glm::vec3(quantised(p)) * points_step_, arc);
 }
 
 void GpuScene::bind_points(const ShaderProgram& prog) const {
     if (prog.declares("u_scene_points")) prog.bind_texture("u_scene_points", points_tex_);
     if (prog.declares("u_scene_point_data")) prog.bind_texture("u_scene_point_data", attributes_tex_);
     if (prog.declares("u_scene_points_origin")) prog.set("u_scene_points_origin", points_origin_);
-    if (prog.declares("u_scene_points_extent")) prog.set("u_scene_points_extent", points_extent_);
+    if (prog.declares("u_scene_points_step")) prog.set("u_scene_points_step", points_step_);
     if (prog.declares("u_scene_points_quantised")) prog.set("u_scene_points_quantised", layout_ == PointLayout::quantised ? 1 : 0);
+    // The arc attribute arrives normalised (0..1 of 65535 steps) when quantised, as it is when exact.
+    const float arc_scale = layout_ == PointLayout::quantised ? arc_step_ * 65535.0f : 1.0f;
+    if (prog.declares("u_scene_point_scale")) prog.set("u_scene_point_scale", glm::vec2(speed_step_, arc_scale));
 }
 
 void GpuScene::ranges(double t0, double t1, Ranges& out) const {

@@ -9,7 +9,6 @@
 #include <pathlet/scene.hpp>
 
 #include <algorithm>
-#include <array>
 #include <vector>
 
 namespace pathlet {
@@ -33,12 +32,13 @@ private:
 };
 
 // The line points on the GPU, in two buffers (shaders/scene_points.glsl reads them):
-// - points_buffer(): per point its position in the lines' bounding box, x, y, z, and its arc
-//   length from the line's first point (world units): quantised to 16 bits each against the
-//   box and the longest line (8 bytes; PointLayout::quantised, the default: at most 1/131070
-//   of the box's side off) or as floats (16 bytes; PointLayout::exact);
-// - attributes_buffer(): per point its time, line id (int) and speed, 3 x 4 bytes; line_vao()'s
-//   attributes, locations 0 (time), 1 (line id, an integer attribute), 2 (speed).
+// - points_buffer(): per point its position: quantised to 21 bits an axis in the lines'
+//   bounding box, two words (PointLayout::quantised, the default: at most 1/4194302 of the
+//   box's side off, a few float steps), or 3 floats (PointLayout::exact);
+// - attributes_buffer(): per point its time (float), line id (int), speed and arc length from
+//   the line's first point (world units): quantised, the speed as a half float and the arc in
+//   16 bits of the longest line's (12 bytes); exact, floats (16 bytes). line_vao()'s attributes,
+//   locations 0 (time), 1 (line id, an integer attribute), 2 (speed), 3 (arc), as floats.
 // The tangent is not stored: the kit's vertex stage derives it from the neighbours (the central
 // difference, one-sided at a line's ends), as the culling and the density read the same positions.
 class ShaderProgram;
@@ -62,8 +62,8 @@ public:
     GLuint points_buffer() const { return points_buffer_; }
     GLuint attributes_buffer() const { return attributes_buffer_; }
     // Binds the points to a program that includes scene_points.glsl: its samplers u_scene_points
-    // (positions and arc, RGBA16 or RGBA32F) and u_scene_point_data (RGB32F), where declared,
-    // and the decoding's uniforms (the box and longest arc; whether they are quantised).
+    // (positions, RG32UI or RGB32UI) and u_scene_point_data (RGB32F or RGBA32F: time and line id
+    // first), where declared, and the decoding's uniforms.
     void bind_points(const ShaderProgram& prog) const;
     // A point's position and arc length as the GPU decodes them, for tests and CPU checks.
     glm::vec4 stored_point(size_t point) const;
@@ -153,9 +153,10 @@ private:
     Bounds bounds_;
     PointLayout layout_ = PointLayout::quantised;
     size_t point_count_ = 0;
-    glm::vec4 points_origin_{0.0f}, points_extent_{1.0f};  // stored (x, y, z, arc) -> data: origin + stored * extent
-    using Quantised = std::array<uint16_t, 4>;
-    Quantised quantised(glm::vec4 point_and_arc) const;
+    // Stored -> data: position origin + code * step; speed code * speed step; arc code * arc step.
+    glm::vec3 points_origin_{0.0f}, points_step_{1.0f};
+    float speed_step_ = 1.0f, arc_step_ = 1.0f;
+    glm::uvec3 quantised(glm::vec3 position) const;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
     mutable float widest_line_ = 0;  // a record of use, not scene data
 };
