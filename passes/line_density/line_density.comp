@@ -4,14 +4,14 @@
 // most a voxel; each piece adds its length to the 8 voxels around its midpoint with trilinear
 // weights (fixed point, integer atomics: exact and independent of order). Half-voxel pieces
 // gave the same AO (MAE 0.0812 vs 0.0813 on the phantom) for 1.3x the time. The points come
-// straight from the scene's vertex buffer (GpuScene::points_texture()). A
+// straight from the scene's point buffers (scene_points.glsl). A
 // compute shader, because a draw of one vertex per segment cost llvmpipe 7 ms in its
 // single-threaded vertex pipeline before any splatting (this dispatch, empty: 2 ms).
 #define LINE_DENSITY_WRITE
 #include "line_density.glsl"
+#include "scene_points.glsl"
 
 layout(local_size_x = 64) in;
-uniform samplerBuffer u_points;  // GpuScene::points_texture(): POINT_FLOATS floats a point
 layout(std430, binding = SEGMENT_STARTS_BINDING) readonly buffer SegmentStarts { uint starts[]; };  // first point of each
 
 uniform int u_segments;
@@ -33,17 +33,12 @@ void deposit(vec3 g, float len) {
     }
 }
 
-float point_float(uint i, int at) { return texelFetch(u_points, int(i) * POINT_FLOATS + at).r; }
-vec3 point_position(uint i) {
-    return vec3(point_float(i, POSITION_FLOAT), point_float(i, POSITION_FLOAT + 1), point_float(i, POSITION_FLOAT + 2));
-}
-
 void main() {
     uint s = gl_GlobalInvocationID.x;
     if (s >= uint(u_segments)) return;
     uint i = starts[s];
-    vec3 p0 = point_position(i), p1 = point_position(i + 1u);
-    float t0 = point_float(i, TIME_FLOAT), t1 = point_float(i + 1u, TIME_FLOAT);
+    vec3 p0 = scene_point_position(int(i)), p1 = scene_point_position(int(i + 1u));
+    float t0 = scene_point_time(int(i)), t1 = scene_point_time(int(i + 1u));
     float fa = 0.0, fb = 1.0;
     if (u_windowed != 0) {
         if (t1 < u_window_range.x || t0 > u_window_range.y) return;

@@ -40,12 +40,8 @@ static_assert(sizeof(Header) == lines::kDensityHeaderBytes);
 class LineDensity : public pathlet::Pass {
 public:
     void setup(pathlet::PassContext& ctx) override {
-        // The points through the scene's buffer texture (its layout said once, in GpuScene).
-        std::vector<std::string> defines = lines::density_defines(ctx);
-        defines.push_back("POINT_FLOATS " + std::to_string(pathlet::GpuScene::kPointFloats));
-        defines.push_back("POSITION_FLOAT " + std::to_string(pathlet::GpuScene::kPositionFloat));
-        defines.push_back("TIME_FLOAT " + std::to_string(pathlet::GpuScene::kTimeFloat));
-        prog_ = &ctx.program({"line_density.comp"}, defines);
+        // The points through the scene's buffer textures (GpuScene::bind_points, scene_points.glsl).
+        prog_ = &ctx.program({"line_density.comp"}, lines::density_defines(ctx));
         // The grid: cubic voxels over the lines' bounds, the longest side cut into `grid`.
         const pathlet::Bounds b = ctx.scene().cpu().lines.bounds();
         const int grid = ctx.params().i("grid");
@@ -116,7 +112,7 @@ public:
             prog_->set("u_segments", int(starts_.size()));
             prog_->set("u_window_range", glm::vec2(float(t0), float(t1)));
             prog_->set("u_windowed", tw.windowed ? 1 : 0);
-            prog_->bind_texture("u_points", ctx.scene().points_texture());
+            ctx.scene().bind_points(*prog_);
             glDispatchCompute(GLuint((starts_.size() + 63) / 64), 1, 1);
         }
         // Buffer update: the next rebuild's header write and clear (glNamedBufferSubData,

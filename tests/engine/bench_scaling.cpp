@@ -1,9 +1,10 @@
 // Scaling table: how the cost of a frame grows with lines and with pixels. The study phantom is
-// repeated 1x, 4x and 16x (every copy after the first shifted by a small random offset, so the
-// copies do not draw onto the same pixels), and each graph is rendered at each size. Per cell:
-// median frame, the three largest passes' shares, the scene's GPU memory (vertex buffer), the
+// made 1x, 4x and 16x denser ("study:density=N": N times the lines, more seeds in the same
+// vessel and time span), and each graph is rendered at each size. Per cell: median frame, the
+// three largest passes' shares, the line points' GPU memory (GpuScene::point_memory), the
 // process's resident memory and its growth over the measured frames (must stay 0: no per-frame
-// allocation), and the load time (repeat + upload, including the level-of-detail build).
+// allocation), and the load time (the cached phantom read + upload, including the level of
+// detail and the chunks; a phantom not cached yet is generated first, timed apart).
 //   build/bin/bench_scaling [--graphs variant1_lineao,isl] [--scales 1,4,16]
 //                           [--sizes 1280x720,1920x1080,3840x2160] [--frames 3] [--window 1]
 #include "frame_capture.hpp"
@@ -17,7 +18,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 
@@ -38,25 +38,6 @@ double rss_mib() {
     size_t pages = 0, resident = 0;
     f >> pages >> resident;
     return double(resident) * 4096.0 / 1048576.0;
-}
-
-// k copies of the lines; copy c > 0 shifted by up to `jitter` world units per axis.
-Scene repeat(const Scene& base, int k, float jitter) {
-    Scene s;
-    s.mesh = base.mesh;
-    s.source = base.source + " x" + std::to_string(k);
-    const Pathlines& b = base.lines;
-    std::mt19937 rng(1234);
-    std::uniform_real_distribution<float> u(-jitter, jitter);
-    for (int c = 0; c < k; ++c) {
-        const glm::vec3 shift = c == 0 ? glm::vec3(0) : glm::vec3(u(rng), u(rng), u(rng));
-        const uint32_t offset = uint32_t(s.lines.position.size());
-        for (const glm::vec3& p : b.position) s.lines.position.push_back(p + shift);
-        s.lines.time.insert(s.lines.time.end(), b.time.begin(), b.time.end());
-        s.lines.velocity.insert(s.lines.velocity.end(), b.velocity.begin(), b.velocity.end());
-        for (LineRange r : b.lines) s.lines.lines.push_back({r.first + offset, r.count});
-    }
-    return s;
 }
 
 }  // namespace
@@ -81,30 +62,32 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    Scene base = phantom::load_or_make_phantom("study");
-    const float jitter = 0.002f * glm::length(base.bounds().hi - base.bounds().lo);
     Runtime& rt = test_runtime();
-    std::printf("scaling: study phantom (%zu lines, %zu points) repeated, window %.2f s, t = 9 s, %d frames, %s\n",
-                base.lines.line_count(), base.lines.position.size(), window, frames,
-                rt.ensure_gl(true).renderer().c_str());
+    std::printf("scaling: study phantom made denser, window %.2f s, t = 9 s, %d frames, %s, %s points\n", window, frames,
+                rt.ensure_gl(true).renderer().c_str(), GpuScene::layout_name(GpuScene::default_point_layout()));
     std::printf("%-6s %-10s %-16s %9s %9s %9s  %-44s %8s %8s %8s %7s\n", "lines", "size", "graph", "median", "p5",
                 "p95", "largest passes (share of the frame)", "scene", "rss", "growth", "load");
     std::printf("%-6s %-10s %-16s %9s %9s %9s  %-44s %8s %8s %8s %7s\n", "", "", "", "(ms)", "(ms)", "(ms)", "",
                 "(MiB)", "(MiB)", "(MiB)", "(s)");
     for (int k : scales) {
-        auto t0 = std::chrono::steady_clock::now();
-        Scene scene = repeat(base, k, jitter);
-        double upload_s = 0;
+        const std::string spec = "study" + (k > 1 ? ":density=" + std::to_string(k) : std::string());
+        const auto g0 = std::chrono::steady_clock::now();
+        phantom::load_or_make_phantom(spec);  // generated and cached on first use, timed apart
+        const double made_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
+        const auto t0 = std::chrono::steady_clock::now();
+        const Scene scene = phantom::load_or_make_phantom(spec);
+        double upload_s = 0, scene_mib = 0, per_point = 0;
         {
-            // The upload (vertex buffer, level-of-detail build) as every render does it.
+            // The upload (point buffers, level of detail, chunks) as every render does it.
             auto u0 = std::chrono::steady_clock::now();
             GpuScene gpu;
             gpu.upload(scene);
             glFinish();
             upload_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - u0).count();
+            scene_mib = double(gpu.point_memory().total()) / 1048576.0;
+            per_point = gpu.point_memory().per_point();
         }
         const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const double scene_mib = double(scene.lines.position.size()) * 48.0 / 1048576.0;
         for (const auto& size : sizes)
             for (const auto& g : graphs) {
                 RenderOptions opt;
@@ -137,8 +120,9 @@ int main(int argc, char** argv) {
                             top.c_str(), scene_mib, rss_last, rss_last - rss_first, load_s);
                 std::fflush(stdout);
             }
-        std::printf("  (%dx: %zu lines, %zu points; repeat + upload %.2f s, of it upload and level of detail %.2f s)\n",
-                    k, scene.lines.line_count(), scene.lines.position.size(), load_s, upload_s);
+        std::printf("  (%dx: %zu lines, %zu points, %.1f B a point on the GPU; load + upload %.2f s, of it upload, level "
+                    "of detail and chunks %.2f s; first call %.1f s)\n",
+                    k, scene.lines.line_count(), scene.lines.position.size(), per_point, load_s, upload_s, made_s);
     }
     return 0;
 }

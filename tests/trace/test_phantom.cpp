@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -155,4 +156,61 @@ TEST(Phantom, StudyGeneratedAndCachedAreTheSame) {
     EXPECT_EQ(made.lines.line_count(), loaded.lines.line_count());
     EXPECT_EQ(made.lines.time, loaded.lines.time);
     EXPECT_EQ(made.lines.position, loaded.lines.position);
+}
+
+// "small:density=3": three times the lines, the first third the phantom at density 1 point for
+// point, the rest new lines (more seeds: not copies of the first third) in the same vessel and
+// time span; the same bytes on one thread and on every core.
+TEST(Phantom, DensityGivesNTimesTheLinesDeterministically) {
+    auto o = phantom::phantom_preset("small:density=3");
+    ASSERT_EQ(o.trace.density, 3);
+    const Scene dense = phantom::make_phantom(o);
+    const Pathlines& base = small_phantom().lines;
+    const Pathlines& d = dense.lines;
+    const size_t n = base.line_count();
+    ASSERT_EQ(d.line_count(), 3 * n);
+    EXPECT_EQ(d.time.size(), d.point_count());
+    EXPECT_EQ(d.velocity.size(), d.point_count());
+    EXPECT_EQ(dense.source, "phantom:small:density=3");
+    // The first block is the phantom itself.
+    ASSERT_GE(d.point_count(), base.point_count());
+    EXPECT_TRUE(std::equal(base.position.begin(), base.position.end(), d.position.begin()));
+    EXPECT_TRUE(std::equal(base.time.begin(), base.time.end(), d.time.begin()));
+    // The other blocks: new lines (few copies of their accepted line), inside its bounds and span.
+    const Bounds b = base.bounds();
+    size_t copies = 0;
+    for (size_t k = n; k < d.line_count(); ++k) {
+        const LineRange r = d.lines[k], src = d.lines[k % n];
+        ASSERT_GE(r.count, 2u);
+        copies += r.count == src.count && std::equal(d.position.begin() + r.first, d.position.begin() + r.first + r.count,
+                                                     d.position.begin() + src.first);
+        for (uint32_t i = r.first; i < r.first + r.count; ++i) {
+            ASSERT_GE(d.time[i], 0.0f);
+            ASSERT_LE(d.time[i], 4.0f);
+            ASSERT_TRUE(glm::all(glm::greaterThan(d.position[i], b.lo - 10.0f)) &&
+                        glm::all(glm::lessThan(d.position[i], b.hi + 10.0f)));
+        }
+    }
+    EXPECT_LT(copies, n / 10) << "companions are new lines, not copies";
+    o.trace.threads = 1;
+    const Scene again = phantom::make_phantom(o);
+    EXPECT_EQ(again.lines.position, d.position);
+    EXPECT_EQ(again.lines.time, d.time);
+}
+
+TEST(Phantom, DensityIsPartOfTheNameAndItsCache) {
+    EXPECT_EQ(phantom::phantom_preset("study").trace.density, 1);
+    EXPECT_EQ(phantom::phantom_preset("study:density=16").trace.density, 16);
+    EXPECT_NE(phantom::phantom_cache_path("study:density=16"), phantom::phantom_cache_path("study"));
+    EXPECT_NE(phantom::phantom_cache_path("study:density=16").find("density16"), std::string::npos);
+    for (const char* bad : {"study:density=0", "study:density=65", "study:density=x", "study:density=4x",
+                            "study:dense=4", "study:", "huge:density=2"}) {
+        try {
+            phantom::phantom_preset(bad);
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string(bad).substr(0, std::string(bad).find(':'))), std::string::npos)
+                << e.what();
+        }
+    }
 }

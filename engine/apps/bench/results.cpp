@@ -1,6 +1,7 @@
 #include "bench/results.hpp"
 
 #include "bench/calibration.hpp"
+#include "common/point_memory.hpp"
 
 #include <unistd.h>
 
@@ -89,11 +90,18 @@ void Results::add_data(const Scene& scene, const TimeRange& time) {
     char t[96];
     if (time.times().size() == 1) std::snprintf(t, sizeof t, "%g", time.start);
     else std::snprintf(t, sizeof t, "%g:%g:%g", time.start, time.end, time.step);
+    // The GPU memory of the line points, as GpuScene::upload allocates it for this data.
+    const GpuScene::PointLayout layout = GpuScene::default_point_layout();
+    const GpuScene::PointMemory m = point_memory_of(scene.lines, layout);
+    const json gpu = {{"layout", GpuScene::layout_name(layout)}, {"bytes", m.total()},         {"bytes_per_point", m.per_point()},
+                      {"positions", m.positions},                {"attributes", m.attributes}, {"lod", m.lod},
+                      {"chunks", m.chunk_boxes},                 {"summary", point_memory_text(m, layout)}};
     j_["data"].push_back({{"source", scene.source},
                           {"lines", scene.lines.line_count()},
                           {"points", scene.lines.point_count()},
                           {"mesh_triangles", scene.mesh ? scene.mesh->index.size() / 3 : 0},
-                          {"time", t}});
+                          {"time", t},
+                          {"gpu_points", gpu}});
 }
 
 void Results::add_run(size_t index, const Run& run, const ExperimentGraph& g, const std::string& graph_path,

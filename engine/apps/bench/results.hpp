@@ -7,7 +7,8 @@
 //    set's span), "frames", "warmup", "sweep_param", "planned_runs", "complete",
 //    "shard": {index, count} (a shard only), "timing_backend",
 //    "calibration": {workload, median_ms} (the machine's speed over all runs: bench/calibration.hpp),
-//    "data": [{source, lines, points, mesh_triangles, time (as rendered: "T" or "A:B:STEP")}],
+//    "data": [{source, lines, points, mesh_triangles, time (as rendered: "T" or "A:B:STEP"),
+//              gpu_points {layout, bytes, bytes_per_point, positions, attributes, lod, chunks, summary}}],
 //    "runs": [{"meta": {index, label, graph_label, graph, graph_path, size, sweep_value, sets, data,
 //                       renderer, image?}, profiler summary..., "frames": [...],
 //              "calibration": {before_ms: [...], after_ms: [...], median_ms}}]}

@@ -332,6 +332,8 @@ Finished run_plan(const BenchOptions& o, const Plan& p, Runtime& rt) {
 // ---- report -----------------------------------------------------------------------------
 int report(const BenchOptions& o, const Plan& p, const Finished& f, const json& baseline) {
     std::printf("summary (%s; %s)\n", f.results.value("gl_renderer", "").c_str(), f.source.c_str());
+    for (const json& d : f.results.value("data", json::array()))
+        if (d.contains("gpu_points")) std::printf("gpu points (%s): %s\n", d.value("source", "").c_str(), d["gpu_points"].value("summary", "").c_str());
     // Chunks per frame over the culling line passes: drawn in phase 1 + phase 2 / hidden by
     // depth / outside the frustum (the line kit's culling; cull=false: nothing hidden).
     std::fputs(bench::summary_table(f.summary).c_str(), stdout);

@@ -33,7 +33,8 @@ std::string scene_memory_text(const SceneOptions& data) {
                       "data (not in the totals above): line points %zu B each (GPU, with the level of detail); line "
                       "chunks %zu B per %u segments (CPU, for culling) + %zu B (GPU); each culling line pass %zu B per "
                       "chunk + %zu B per segment (GPU); --phantom or --data gives the sizes for a data set\n",
-                      GpuScene::kPointGpuBytes, chunk_bytes, LineChunks::kSegments, GpuScene::kGpuChunkBytes,
+                      GpuScene::point_memory(1, 0, GpuScene::default_point_layout()).total(), chunk_bytes,
+                      LineChunks::kSegments, GpuScene::kGpuChunkBytes,
                       lines::culling_bytes(1, 0), lines::culling_bytes(0, 1));
         return buf;
     }
@@ -45,7 +46,8 @@ std::string scene_memory_text(const SceneOptions& data) {
                   "data %s (not in the totals above): %zu lines, %zu points: line points %.2f MiB (GPU), %zu line "
                   "chunks %.2f MiB (CPU, for culling) + %.2f MiB (GPU); each culling line pass %.2f MiB (GPU)\n",
                   scene.source.c_str(), scene.lines.line_count(), scene.lines.point_count(),
-                  double(scene.lines.point_count() * GpuScene::kPointGpuBytes) / kMiB, chunks.chunks().size(),
+                  double(GpuScene::point_memory(scene.lines.point_count(), 0, GpuScene::default_point_layout()).total()) / kMiB,
+                  chunks.chunks().size(),
                   double(chunks.bytes()) / kMiB, double(chunks.chunks().size() * GpuScene::kGpuChunkBytes) / kMiB,
                   double(lines::culling_bytes(chunks.chunks().size(), segments)) / kMiB);
     return buf;

@@ -1,6 +1,8 @@
 // pathlet info FILE: what a pathline or mesh file holds, and what the importer repaired.
 #include "commands.hpp"
 #include "common_options.hpp"
+#include "common/point_memory.hpp"
+#include "common/scene_source.hpp"
 #include "io/file_info.hpp"
 
 #include "build_info.hpp"
@@ -47,12 +49,16 @@ int run(const std::vector<std::string>& argv) {
                    "LengthUnit/TimeUnit/VelocityUnit, .pathlet, tracts in mm) or --units gives them.\n"
                    "With --gl instead of a file: the GL renderer and every limit the engine works within, one\n"
                    "'NAME VALUE' a line (PATHLET_GL_LIMITS=minimum: the GL 4.5 minimum of each).\n"
+                   "Pathlines also show the GPU memory their points take ('gpu points': bytes a point by buffer\n"
+                   "and the total; PATHLET_POINT_LAYOUT=exact for unquantised positions).\n"
                    "Exit status: 0 ok, 1 the file cannot be read (message on stderr), 2 bad usage.");
     std::string file;
     bool gl = false;
+    Given<std::string> phantom{"study"};
     ArrayOptions arrays;
     a.positional("FILE", file, "pathline or mesh file", /*required=*/false);
     a.flag("gl", gl, "print the GL renderer and the limits the engine uses (binding points, units, sizes)");
+    a.option("phantom", phantom, "study|small[:density=N]", "describe the built-in phantom instead of a file");
     arrays.declare(a);
     a.example("pathlet info flow.vtp", "summary of a VTK XML pathline file")
         .example("pathlet info blood_flow --time-step 0.005", "plain-text rows sampled every 5 ms")
@@ -60,16 +66,30 @@ int run(const std::vector<std::string>& argv) {
         .example("pathlet info aorta-surface.stl", "vertices, triangles and bounds of a vessel wall")
         .example("pathlet info tracks300.trk", "TrackVis tractography: header, tracks, scalars and properties")
         .example("pathlet info blood_flow --time-step 0.005 --units mm", "text rows in mm, so speeds in mm/s")
-        .example("pathlet info --gl", "the GL renderer and limits (PATHLET_GL_LIMITS=minimum: a minimal GL 4.5 driver)");
+        .example("pathlet info --gl", "the GL renderer and limits (PATHLET_GL_LIMITS=minimum: a minimal GL 4.5 driver)")
+        .example("pathlet info --phantom study:density=16", "the phantom 16 times denser: lines, points, GPU memory");
     if (!a.parse(argv)) return 0;
     if (gl) {
         if (!file.empty()) throw UsageError("give FILE or --gl, not both");
         return print_gl_limits();
     }
+    // What the GPU would hold of the lines, by the sizes GpuScene::upload allocates.
+    const io::DescribeMore gpu = [](const Pathlines& p) {
+        const GpuScene::PointLayout layout = GpuScene::default_point_layout();
+        return "gpu points: " + point_memory_text(point_memory_of(p, layout), layout) + "\n";
+    };
+    if (phantom.given) {
+        if (!file.empty()) throw UsageError("give FILE or --phantom, not both");
+        SceneSource src;
+        src.phantom = phantom.value;
+        const Scene scene = load_scene(src, /*quiet=*/true);
+        std::printf("file:      %s\n%s", scene.source.c_str(), io::describe_pathlines(scene.lines, {}, gpu).c_str());
+        return 0;
+    }
     if (file.empty()) throw UsageError("missing FILE (or --gl)");
     const io::LoadOptions opts = arrays.load_options();
     try {
-        std::fputs(io::describe_file(file, opts).c_str(), stdout);
+        std::fputs(io::describe_file(file, opts, gpu).c_str(), stdout);
         return 0;
     } catch (const DataError& e) {
         std::fprintf(stderr, "pathlet info: error: %s\n", e.what());

@@ -58,7 +58,9 @@ void SceneOptions::declare(Args& a) {
            "a folder (its data files) or a glob are joined, each file a bundle named after it (colormap=bundle); "
            "takes every argument up to the next option")
         .option("mesh", mesh, "FILE", "vessel wall: .gltf/.glb, .stl or .obj (optional)")
-        .option("phantom", phantom, "study|small", "built-in aortic-arch phantom used when --data is not given");
+        .option("phantom", phantom, "study|small[:density=N]",
+                "built-in aortic-arch phantom used when --data is not given; ':density=N' makes it N times\n"
+                "denser (N x the lines: more seeds, the same vessel and time; deterministic, cached)");
     arrays.declare(a);
 }
 

@@ -7,6 +7,7 @@
 #include "graph/graph_model.hpp"
 #include "util/text.hpp"
 #include <pathlet/gpu_fence.hpp>
+#include <pathlet/gpu_scene.hpp>
 #include <pathlet/text.hpp>
 
 #include <algorithm>
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
     try {  // the environment's GPU settings, before anything runs: a typo is a usage error, never ignored
         pathlet::simulated_gpu_latency();
         pathlet::FramesInFlight::from_env();
+        pathlet::GpuScene::default_point_layout();  // PATHLET_POINT_LAYOUT
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

@@ -38,7 +38,7 @@ void common(std::ostringstream& o, const LoadReport& r) {
 
 std::string describe_file(const std::string& path) { return describe_file(path, {}); }
 
-std::string describe_file(const std::string& path, const LoadOptions& opts) {
+std::string describe_file(const std::string& path, const LoadOptions& opts, const DescribeMore& more) {
     std::ostringstream o;
     LoadReport r;
     o << "file:      " << path << "\n";
@@ -54,6 +54,11 @@ std::string describe_file(const std::string& path, const LoadOptions& opts) {
     }
     Pathlines p = load_pathlines(path, opts, &r);
     o << "format:    " << r.format << "\n";
+    return o.str() + describe_pathlines(p, r, more);
+}
+
+std::string describe_pathlines(const Pathlines& p, const LoadReport& r, const DescribeMore& more) {
+    std::ostringstream o;
     o << "kind:      pathlines\n";
     o << "lines:     " << p.line_count() << "\n";
     o << "points:    " << p.point_count() << "\n";
@@ -79,6 +84,7 @@ std::string describe_file(const std::string& path, const LoadOptions& opts) {
         o << "points per line: min " << counts.front() << ", median " << counts[counts.size() / 2] << ", max " << counts.back()
           << "\n";
     }
+    if (more) o << more(p);
     common(o, r);
     return o.str();
 }

@@ -63,9 +63,25 @@ std::vector<uint32_t> nearest_samples(const trace::Grid& g, const std::vector<Ce
 
 }  // namespace
 
-PhantomOptions phantom_preset(const std::string& preset) {
+PhantomOptions phantom_preset(const std::string& spec) {
+    const size_t colon = spec.find(':');
+    const std::string preset = spec.substr(0, colon);
     PhantomOptions o;
     o.preset = preset;
+    if (colon != std::string::npos) {
+        const std::string opt = spec.substr(colon + 1), key = "density=";
+        size_t used = 0;
+        int n = 0;
+        try {
+            if (opt.rfind(key, 0) == 0) n = std::stoi(opt.substr(key.size()), &used);
+        } catch (const std::exception&) {
+            n = 0;
+        }
+        if (opt.rfind(key, 0) != 0 || used + key.size() != opt.size() || n < 1 || n > kMaxDensity)
+            throw std::invalid_argument("phantom '" + spec + "': expected " + preset + ":density=N with N in 1.." +
+                                        std::to_string(kMaxDensity));
+        o.trace.density = n;
+    }
     auto& t = o.trace;
     t.time_begin = 0.0f;
     t.pulsatile = trace::Pulsatile{1.0f, 2.85f};  // 60 bpm; cycle-mean factor ~1
@@ -93,7 +109,7 @@ PhantomOptions phantom_preset(const std::string& preset) {
         t.close_fraction = 0.8f;
         t.resample_step = 2.0f;
     } else {
-        throw std::invalid_argument("unknown phantom preset '" + preset + "' (expected study or small)");
+        throw std::invalid_argument("unknown phantom preset '" + preset + "' (expected study or small, optionally with :density=N)");
     }
     return o;
 }
@@ -167,7 +183,7 @@ Scene make_phantom(const PhantomOptions& o, const trace::Progress& progress, tra
     Scene scene;
     scene.mesh = trace::marching_cubes(field.grid, field.mask, 0.5f);
     scene.lines = trace::trace_pathlines(field, o.trace, progress, stats);
-    scene.source = "phantom:" + o.preset;
+    scene.source = "phantom:" + o.preset + (o.trace.density > 1 ? ":density=" + std::to_string(o.trace.density) : "");
     return scene;
 }
 

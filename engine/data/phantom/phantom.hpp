@@ -28,8 +28,11 @@ struct PhantomOptions {
 
 // "study": sized like the study data set (about 3169 lines, 644k points, 18 s).
 // "small": a few hundred lines for tests and quick looks.
+// "NAME:density=N": N times the lines of NAME (more seeds, the same vessel and time span;
+// TraceOptions::density), N in 1..kMaxDensity.
 // Throws std::invalid_argument for other names.
-PhantomOptions phantom_preset(const std::string& preset);
+constexpr int kMaxDensity = 64;
+PhantomOptions phantom_preset(const std::string& spec);
 
 // The voxelised phantom: steady velocity shape (mm/s) and a soft mask whose 0.5
 // iso-surface is the lumen wall.
@@ -39,8 +42,8 @@ Scene make_phantom(const PhantomOptions& opts, const trace::Progress& progress =
 
 // Cache file for a preset's pathlines (.pathlet; the wall is the same path with .glb):
 // $XDG_CACHE_HOME/pathlet/ or ~/.cache/pathlet/, named with the generator version.
-std::string phantom_cache_path(const std::string& preset);
+std::string phantom_cache_path(const std::string& spec);
 // Loads the cached phantom, or generates it and writes the cache (atomically) first.
-Scene load_or_make_phantom(const std::string& preset, const trace::Progress& progress = {});
+Scene load_or_make_phantom(const std::string& spec, const trace::Progress& progress = {});
 
 }  // namespace pathlet::phantom

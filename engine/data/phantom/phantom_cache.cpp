@@ -13,14 +13,15 @@ namespace pathlet::phantom {
 // Bump when the generator's output changes, so stale caches are never reused.
 static constexpr const char* kPhantomVersion = "v2";  // v2: no points of one float time
 
-std::string phantom_cache_path(const std::string& preset) {
-    phantom_preset(preset);  // validates the name
+std::string phantom_cache_path(const std::string& spec) {
+    const PhantomOptions o = phantom_preset(spec);  // validates the name
+    const std::string density = o.trace.density > 1 ? "-density" + std::to_string(o.trace.density) : "";
     const std::filesystem::path dir = cache_dir();
-    return (dir / ("phantom-" + preset + "-" + kPhantomVersion + ".pathlet")).string();
+    return (dir / ("phantom-" + o.preset + density + "-" + kPhantomVersion + ".pathlet")).string();
 }
 
-Scene load_or_make_phantom(const std::string& preset, const trace::Progress& progress) {
-    const std::string path = phantom_cache_path(preset);
+Scene load_or_make_phantom(const std::string& spec, const trace::Progress& progress) {
+    const std::string path = phantom_cache_path(spec);
     const std::string wall = std::filesystem::path(path).replace_extension(".glb").string();
     std::error_code ec;
     if (std::filesystem::exists(path, ec) && std::filesystem::exists(wall, ec)) {
@@ -35,7 +36,7 @@ Scene load_or_make_phantom(const std::string& preset, const trace::Progress& pro
             // A damaged cache is regenerated below.
         }
     }
-    Scene s = make_phantom(phantom_preset(preset), progress);
+    Scene s = make_phantom(phantom_preset(spec), progress);
     std::filesystem::create_directories(std::filesystem::path(path).parent_path());
     // Wall first: the pathline file appearing last marks the pair complete.
     if (s.mesh) io::save_mesh(*s.mesh, wall);

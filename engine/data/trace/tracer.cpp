@@ -71,7 +71,66 @@ struct Candidate {
     std::vector<uint8_t> near_before;  // per point: near a line accepted before this batch
 };
 
+void append_line(Pathlines& out, const TracedLine& l) {
+    out.lines.push_back({uint32_t(out.position.size()), uint32_t(l.size())});
+    out.position.insert(out.position.end(), l.position.begin(), l.position.end());
+    out.time.insert(out.time.end(), l.time.begin(), l.time.end());
+    out.velocity.insert(out.velocity.end(), l.velocity.begin(), l.velocity.end());
+}
+
 }  // namespace
+
+// A line from `voxel`, its seed jittered inside the voxel and its release time drawn from the
+// hash `h`: traced, smoothed and resampled into c.line (c.length, c.steps).
+static void trace_seed(const FlowSampler& flow, size_t voxel, uint64_t h, const TraceOptions& o, float min_speed,
+                       float resample, Candidate& c) {
+    const Grid& g = flow.grid();
+    const glm::vec3 jitter(unit_float(hash64(h, 1)) - 0.5f, unit_float(hash64(h, 2)) - 0.5f,
+                           unit_float(hash64(h, 3)) - 0.5f);
+    glm::vec3 seed = g.point(g.coord(voxel)) + jitter * o.seed_jitter * g.spacing;
+    if (!flow.inside(seed)) seed = g.point(g.coord(voxel));
+    const float t0 = o.time_begin + unit_float(hash64(h, 4)) * (o.time_end - o.time_begin);
+    TracedLine raw = integrate_line(flow, seed, t0, o, min_speed, &c.steps);
+    binomial_smooth(raw.position, o.smooth_passes);
+    c.line = resample_by_length(raw, resample);
+    c.length = polyline_length(c.line.position);
+}
+
+// TraceOptions::density: density - 1 companions per accepted line, in blocks after the accepted
+// lines. A companion is the first of a few seeds in its line's voxel that gives a line of
+// min_length; when none does (a voxel near the outlet), a copy of the accepted line, so the
+// count is exact. Deterministic: each companion's seeds hash from its voxel, block and attempt.
+static void add_companions(const FlowSampler& flow, const std::vector<size_t>& accepted, const TraceOptions& o,
+                           float min_speed, float resample, int threads, Pathlines& out, TraceStats& st) {
+    constexpr int kAttempts = 8;
+    const size_t n = accepted.size();
+    const size_t blocks = size_t(o.density - 1);
+    std::vector<Candidate> comp(n * blocks);
+    std::atomic<uint64_t> steps{0};
+    parallel_for(comp.size(), threads, [&](size_t i) {
+        const size_t line = i % n, block = 1 + i / n;
+        Candidate& c = comp[i];
+        for (int a = 0; a < kAttempts; ++a) {
+            const uint64_t h = hash64(hash64(accepted[line], o.seed ^ 0xc0b1ull), block * kAttempts + size_t(a));
+            trace_seed(flow, accepted[line], h, o, min_speed, resample, c);
+            if (c.line.size() >= 2 && c.length >= o.min_length) break;
+            c.line = {};
+        }
+        steps += c.steps;
+    });
+    st.particle_steps += steps;
+    for (size_t i = 0; i < comp.size(); ++i) {
+        if (comp[i].line.size() < 2) {  // the accepted line again (copied first: `out` grows)
+            const LineRange r = out.lines[i % n];
+            TracedLine& copy = comp[i].line;
+            copy.position.assign(out.position.begin() + r.first, out.position.begin() + r.first + r.count);
+            copy.time.assign(out.time.begin() + r.first, out.time.begin() + r.first + r.count);
+            copy.velocity.assign(out.velocity.begin() + r.first, out.velocity.begin() + r.first + r.count);
+        }
+        append_line(out, comp[i].line);
+        comp[i].line = {};
+    }
+}
 
 TracedLine integrate_line(const FlowSampler& flow, glm::vec3 seed, float t0, const TraceOptions& o, float min_speed,
                           uint64_t* steps) {
@@ -146,6 +205,7 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
     };
 
     Pathlines out;
+    std::vector<size_t> accepted;  // the seed voxel of each accepted line
     size_t cursor = 0;
     std::vector<Candidate> cands;
     while (cursor < keyed.size() && (o.max_lines == 0 || out.lines.size() < o.max_lines)) {
@@ -159,16 +219,7 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
         }
         parallel_for(cands.size(), threads, [&](size_t i) {
             Candidate& c = cands[i];
-            const uint64_t h = hash64(c.voxel, o.seed ^ 0x5eedull);
-            const glm::vec3 jitter(unit_float(hash64(h, 1)) - 0.5f, unit_float(hash64(h, 2)) - 0.5f,
-                                   unit_float(hash64(h, 3)) - 0.5f);
-            glm::vec3 seed = g.point(g.coord(c.voxel)) + jitter * o.seed_jitter * g.spacing;
-            if (!flow.inside(seed)) seed = g.point(g.coord(c.voxel));
-            const float t0 = o.time_begin + unit_float(hash64(h, 4)) * (o.time_end - o.time_begin);
-            TracedLine raw = integrate_line(flow, seed, t0, o, min_speed, &c.steps);
-            binomial_smooth(raw.position, o.smooth_passes);
-            c.line = resample_by_length(raw, resample);
-            c.length = polyline_length(c.line.position);
+            trace_seed(flow, c.voxel, hash64(c.voxel, o.seed ^ 0x5eedull), o, min_speed, resample, c);
             // The global proximity hash is read-only during the parallel phase.
             if (o.min_distance > 0.0f) {
                 c.near_before.resize(c.line.size());
@@ -189,10 +240,8 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
                 continue;
             }
             if (o.max_lines && out.lines.size() >= o.max_lines) break;
-            out.lines.push_back({uint32_t(out.position.size()), uint32_t(c.line.size())});
-            out.position.insert(out.position.end(), c.line.position.begin(), c.line.position.end());
-            out.time.insert(out.time.end(), c.line.time.begin(), c.line.time.end());
-            out.velocity.insert(out.velocity.end(), c.line.velocity.begin(), c.line.velocity.end());
+            append_line(out, c.line);
+            accepted.push_back(c.voxel);
             walk(c.line.position, 0.5f * g.min_spacing(), cover);
             cover(g.point(g.coord(c.voxel)));
             if (o.min_distance > 0.0f) walk(c.line.position, 0.5f * o.min_distance, [&](glm::vec3 p) { near_batch.insert(p); });
@@ -200,6 +249,7 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
         near.merge(near_batch);
         report(progress, keyed.empty() ? 1.0 : double(cursor) / double(keyed.size()), "tracing");
     }
+    if (o.density > 1) add_companions(flow, accepted, o, min_speed, resample, threads, out, st);
     report(progress, 1.0, "tracing");
     if (stats_out) *stats_out = st;
     out.units = {field.units.length, "s", field.units.velocity};

@@ -41,6 +41,11 @@ struct TraceOptions {
     int smooth_passes = 2;         // binomial [1 2 1] passes
     float resample_step = 0.0f;    // world units between output points; 0 = smallest voxel spacing
     size_t max_lines = 0;          // 0 = no limit
+    // Density: lines per accepted seed. Above 1, each accepted line gets density - 1 companions
+    // seeded in its voxel at release times of their own (after every accepted line, in blocks:
+    // the first block is the data set at density 1), kept without the closeness test: the same
+    // vessel and time span, exactly density times the lines.
+    int density = 1;
 
     // Execution
     int threads = 0;               // 0 = all hardware threads

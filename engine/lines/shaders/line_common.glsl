@@ -29,24 +29,29 @@ vec3 line_data_position(vec3 pos_view) { return transpose(mat3(u_view)) * (pos_v
     float age; float arc_head; float arc_tail; float arc; float half_width; flat int line_id;
 
 #ifdef LINE_STAGE_VERTEX
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in float a_time;
-layout(location = 2) in vec3 a_velocity;
-layout(location = 3) in vec3 a_tangent;
-layout(location = 4) in int a_line_id;
-layout(location = 5) in float a_arc;
+#include "scene_points.glsl"
+layout(location = 0) in float a_time;  // GpuScene::line_vao()
+layout(location = 1) in int a_line_id;
+layout(location = 2) in float a_speed;  // times u_scene_point_scale.x
+layout(location = 3) in float a_arc;    // times u_scene_point_scale.y
 out LineVertex { LINE_VERTEX_MEMBERS } v_out;
 
 // View-space point and tangent, once per point (a point is shared by two segments, and
-// llvmpipe runs the GS single-threaded, so per-point work belongs here).
+// llvmpipe runs the GS single-threaded, so per-point work belongs here). The position is
+// fetched (gl_VertexID is the point's index in every kit draw), and the tangent is the central
+// difference of the neighbours on the same line (one-sided at its ends), as the CPU once stored it.
 void line_vertex() {
-    v_out.position = (u_view * vec4(a_position, 1.0)).xyz;
+    const int i = gl_VertexID;
+    const int prev = max(i - 1, 0), next = min(i + 1, scene_point_count() - 1);
+    const int a = scene_point_line(prev) == a_line_id ? prev : i;
+    const int b = scene_point_line(next) == a_line_id ? next : i;
+    v_out.position = (u_view * vec4(scene_point_position(i), 1.0)).xyz;
     v_out.time = a_time;
-    v_out.speed = length(a_velocity);
-    v_out.arc = a_arc;
-    v_out.tangent = mat3(u_view) * a_tangent;
+    v_out.speed = a_speed * u_scene_point_scale.x;
+    v_out.arc = a_arc * u_scene_point_scale.y;
+    v_out.tangent = mat3(u_view) * line_safe_normalize(scene_point_position(b) - scene_point_position(a), vec3(1, 0, 0));
     v_out.line_id = a_line_id;
-    v_out.point = gl_VertexID;
+    v_out.point = i;
 }
 #endif
 

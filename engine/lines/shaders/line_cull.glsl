@@ -37,9 +37,10 @@ layout(std430, binding = CULL_CHUNKS_BINDING) readonly buffer CullChunks { CullC
 layout(std430, binding = CULL_LOD_BINDING) readonly buffer CullLod { float cull_keep[]; };
 #endif
 #ifdef CULL_USES_POSITIONS
-// Per point its position (GpuScene::position_buffer(): 3 floats a point, packed).
-layout(std430, binding = CULL_POSITIONS_BINDING) readonly buffer CullPositions { float cull_position_xyz[]; };
-vec3 cull_position(uint i) { return vec3(cull_position_xyz[3u * i], cull_position_xyz[3u * i + 1u], cull_position_xyz[3u * i + 2u]); }
+// Per point its position (GpuScene::points_buffer(), decoded by scene_points.glsl).
+#include "scene_points.glsl"
+layout(std430, binding = CULL_POSITIONS_BINDING) readonly buffer CullPositions { uint cull_point_word[]; };
+vec3 cull_position(uint i) { return SCENE_POINT_FROM_WORDS(cull_point_word, i); }
 #endif
 #ifdef CULL_USES_LINES
 // Per line, this frame: the window's first and last point (last < first: none), the level of

@@ -139,7 +139,7 @@ void ChunkCuller::upload_lines(const GpuScene& scene, const Frame& f) {
 void ChunkCuller::bind_buffers(const GpuScene& scene) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kChunks, scene.chunk_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLod, scene.lod_buffer());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositions, scene.position_buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositions, scene.points_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLines, lines_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kState, state_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlots, slots_);
@@ -244,6 +244,7 @@ void ChunkCuller::draw(PassContext& ctx, const ShaderProgram& prog, const Frame&
     ShaderProgram& c = ctx.program({"line_cull_chunks.comp"}, defines());
     if (&c != checked_) check_state_layout(c), checked_ = &c;
     c.use();
+    scene.bind_points(c);
     c.set("u_cull_view_proj", f.view_proj);
     c.set("u_cull_grow", f.grow);
     set_uint(c, "u_cull_chunks", chunks);

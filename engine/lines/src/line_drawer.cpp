@@ -129,6 +129,7 @@ void Drawer::begin(PassContext& ctx, const ShaderProgram& prog) {
     upload(buffer_, capacity_, pathlets_.data(), pathlets_.size() * sizeof(glm::vec4));
     prog.bind_texture("u_line_pathlets", pathlets_view_.of({buffer_, capacity_}, GL_RGBA32F));
     if (prog.uniform("u_line_bundles")) prog.bind_texture("u_line_bundles", scene.line_bundles_texture());
+    scene.bind_points(prog);
 
     // Level of detail: the pixel size in world units at distance d is scale * d (perspective)
     // or scale (orthographic), for the pass's output height.

@@ -1,24 +1,50 @@
 #include <pathlet/gpu_scene.hpp>
+#include <pathlet/shader.hpp>
+
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
 
 namespace pathlet {
 
 namespace {
-struct LineVertex {
-    glm::vec3 position;
+// attributes_buffer(), a texel (RGB32F / RGBA32F) and a vertex a point: time, line id, speed and
+// arc length; quantised, the speed as a half float (of speed / speed step) and the arc length as
+// 16 bits of the longest line's, in one word.
+struct QuantisedAttributes {
     float time;
-    glm::vec3 velocity;
-    glm::vec3 tangent;
     int32_t line_id;
-    float arc;  // arc length from the line's first point
+    uint16_t speed;
+    uint16_t arc;
 };
-static_assert(sizeof(LineVertex) == GpuScene::kLineVertexBytes);
-static_assert(sizeof(LineVertex) == GpuScene::kPointFloats * sizeof(float));
-static_assert(offsetof(LineVertex, position) == GpuScene::kPositionFloat * sizeof(float));
-static_assert(offsetof(LineVertex, time) == GpuScene::kTimeFloat * sizeof(float));
+struct ExactAttributes {
+    float time;
+    int32_t line_id;
+    float speed;
+    float arc;
+};
+static_assert(sizeof(QuantisedAttributes) == 12 && sizeof(ExactAttributes) == 16);
+// points_buffer(), quantised: two words a point, x, y, z of 21 bits each (RG32UI texels);
+// exact: the floats' bits (RGB32UI).
+constexpr uint32_t kAxisSteps = (1u << 21) - 1;
+using PackedPosition = std::array<uint32_t, 2>;
+size_t position_bytes(GpuScene::PointLayout l) { return l == GpuScene::PointLayout::exact ? 3 * sizeof(float) : sizeof(PackedPosition); }
+size_t attribute_bytes(GpuScene::PointLayout l) {
+    return l == GpuScene::PointLayout::exact ? sizeof(ExactAttributes) : sizeof(QuantisedAttributes);
+}
+
+// The code of x in steps of `step` from lo: nearest, clamped to [0, top] (a non-finite x: 0).
+uint32_t quantise(float x, float lo, float step, uint32_t top) {
+    const double f = (double(x) - double(lo)) / double(step);
+    return std::isfinite(f) ? uint32_t(std::clamp(std::llround(f), 0ll, (long long)top)) : 0u;
+}
+PackedPosition pack(glm::uvec3 q) { return {q.x | (q.y << 21), (q.y >> 11) | (q.z << 10)}; }
 
 // A chunk as GLSL's std430 struct {vec3 lo; uint first; vec3 hi; uint last; uint line; uvec3 pad;} lays it out.
 struct GpuChunk {
@@ -39,25 +65,38 @@ GLuint immutable_buffer(const void* data, size_t bytes) {
     return b;
 }
 
-glm::vec3 safe_normalize(glm::vec3 v, glm::vec3 fallback) {
-    float l = glm::length(v);
-    return l > 1e-12f ? v / l : fallback;
-}
 }  // namespace
+
+GpuScene::PointLayout GpuScene::default_point_layout() {
+    const char* e = std::getenv("PATHLET_POINT_LAYOUT");
+    if (!e || !*e || std::strcmp(e, "quantised") == 0) return PointLayout::quantised;
+    if (std::strcmp(e, "exact") == 0) return PointLayout::exact;
+    throw std::invalid_argument(std::string("PATHLET_POINT_LAYOUT='") + e + "': expected quantised or exact");
+}
+
+GpuScene::PointMemory GpuScene::point_memory(size_t points, size_t chunks, PointLayout layout) {
+    PointMemory m;
+    m.points = points;
+    m.chunks = chunks;
+    m.positions = points * position_bytes(layout);
+    m.attributes = points * attribute_bytes(layout);
+    m.lod = points * sizeof(float);
+    m.chunk_boxes = chunks * kGpuChunkBytes;
+    return m;
+}
 
 GpuScene::~GpuScene() { release(); }
 
 void GpuScene::release() {
     if (line_vao_) glDeleteVertexArrays(1, &line_vao_);
-    if (line_vbo_) glDeleteBuffers(1, &line_vbo_);
-    if (points_tex_) glDeleteTextures(1, &points_tex_);
-    if (chunk_buffer_) glDeleteBuffers(1, &chunk_buffer_);
-    if (lod_buffer_) glDeleteBuffers(1, &lod_buffer_);
-    if (position_buffer_) glDeleteBuffers(1, &position_buffer_);
-    if (bundles_tex_) glDeleteTextures(1, &bundles_tex_);
-    if (bundles_buffer_) glDeleteBuffers(1, &bundles_buffer_);
+    const GLuint textures[] = {points_tex_, attributes_tex_, bundles_tex_};
+    glDeleteTextures(3, textures);
+    const GLuint buffers[] = {points_buffer_, attributes_buffer_, chunk_buffer_, lod_buffer_, bundles_buffer_};
+    glDeleteBuffers(5, buffers);
     mesh_.release();
-    line_vao_ = line_vbo_ = points_tex_ = chunk_buffer_ = lod_buffer_ = position_buffer_ = bundles_buffer_ = bundles_tex_ = 0;
+    line_vao_ = points_buffer_ = attributes_buffer_ = points_tex_ = attributes_tex_ = chunk_buffer_ = lod_buffer_ = 0;
+    bundles_buffer_ = bundles_tex_ = 0;
+    point_count_ = 0;
 }
 
 void GpuMesh::release() {
@@ -96,9 +135,10 @@ void GpuMesh::upload(const Mesh& mesh) {
     count_ = GLsizei(m.index.size());
 }
 
-void GpuScene::upload(const Scene& scene) {
+void GpuScene::upload(const Scene& scene, PointLayout layout) {
     release();
     cpu_ = &scene;
+    layout_ = layout;
     const Pathlines& pl = scene.lines;
     bounds_ = scene.bounds();
     tmin_ = pl.time_min();
@@ -129,26 +169,7 @@ void GpuScene::upload(const Scene& scene) {
         }
     }
 
-    // Interleave once; the tangent is the central difference (one-sided at the ends), so the
-    // geometry shader gets smooth joins without adjacency primitives.
-    std::vector<LineVertex> v(pl.position.size());
-    arc_.assign(pl.position.size(), 0.0f);
-    for (size_t li = 0; li < pl.lines.size(); ++li) {
-        const LineRange r = pl.lines[li];
-        double arc = 0.0;
-        for (uint32_t k = 0; k < r.count; ++k) {
-            size_t i = r.first + k;
-            size_t a = r.first + (k > 0 ? k - 1 : 0), b = r.first + std::min(k + 1, r.count - 1);
-            if (k > 0) {
-                float step = glm::length(pl.position[i] - pl.position[i - 1]);
-                if (std::isfinite(step)) arc += step;  // a bad point adds nothing, never NaN
-            }
-            arc_[i] = float(arc);
-            glm::vec3 vel = i < pl.velocity.size() ? pl.velocity[i] : glm::vec3(0);
-            v[i] = {pl.position[i], i < pl.time.size() ? pl.time[i] : 0.0f, vel,
-                    safe_normalize(pl.position[b] - pl.position[a], glm::vec3(1, 0, 0)), int32_t(li), arc_[i]};
-        }
-    }
+    upload_points(pl);
     lod_.build(pl, smax_ - smin_);
     chunks_.build(pl);
     {
@@ -161,36 +182,114 @@ void GpuScene::upload(const Scene& scene) {
             }
         chunk_buffer_ = immutable_buffer(gc.data(), gc.size() * sizeof(GpuChunk));
         lod_buffer_ = immutable_buffer(lod_.keep().data(), lod_.keep().size() * sizeof(float));
-        static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-        position_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
         std::vector<uint32_t> bundles(pl.lines.size());
         for (size_t li = 0; li < bundles.size(); ++li) bundles[li] = pl.bundle_of(li);
         bundles_buffer_ = immutable_buffer(bundles.data(), bundles.size() * sizeof(uint32_t));
         glCreateTextures(GL_TEXTURE_BUFFER, 1, &bundles_tex_);
         glTextureBuffer(bundles_tex_, GL_R32UI, bundles_buffer_);
     }
-    glCreateBuffers(1, &line_vbo_);
-    glNamedBufferStorage(line_vbo_, GLsizeiptr(std::max<size_t>(v.size(), 1) * sizeof(LineVertex)),
-                         v.empty() ? nullptr : v.data(), 0);
+    if (scene.mesh && !scene.mesh->empty()) mesh_.upload(*scene.mesh);
+}
+
+// The two point buffers, their buffer textures and the VAO over the attributes.
+void GpuScene::upload_points(const Pathlines& pl) {
+    point_count_ = pl.position.size();
+    const bool exact = layout_ == PointLayout::exact;
+    std::vector<float> speed(pl.position.size(), 0.0f);
+    arc_.assign(pl.position.size(), 0.0f);
+    float longest = 0.0f, fastest = 0.0f;
+    for (const LineRange& r : pl.lines) {
+        double arc = 0.0;
+        for (uint32_t k = 0; k < r.count; ++k) {
+            const size_t i = r.first + k;
+            if (k > 0) {
+                float step = glm::length(pl.position[i] - pl.position[i - 1]);
+                if (std::isfinite(step)) arc += step;  // a bad point adds nothing, never NaN
+            }
+            arc_[i] = float(arc);
+            speed[i] = i < pl.velocity.size() ? glm::length(pl.velocity[i]) : 0.0f;
+            longest = std::max(longest, arc_[i]);
+            if (std::isfinite(speed[i])) fastest = std::max(fastest, speed[i]);
+        }
+    }
+    // Steps: the lines' box (not the scene's, which holds the wall too) in 2^21 - 1, the longest
+    // line's arc length in 65535; the speed a half float, scaled by a power of two beyond 32768.
+    const Bounds b = pl.bounds();
+    points_origin_ = glm::vec3(0.0f);
+    points_step_ = glm::vec3(1.0f);
+    arc_step_ = speed_step_ = 1.0f;
+    if (!exact) {
+        if (b.valid()) points_origin_ = b.lo, points_step_ = glm::max((b.hi - b.lo) / float(kAxisSteps), glm::vec3(1e-30f));
+        arc_step_ = std::max(longest / 65535.0f, 1e-30f);
+        while (fastest / speed_step_ > 32768.0f) speed_step_ *= 2.0f;
+    }
+    const auto time_of = [&](size_t i) { return i < pl.time.size() ? pl.time[i] : 0.0f; };
+    std::vector<int32_t> line_of(pl.position.size(), 0);
+    for (size_t li = 0; li < pl.lines.size(); ++li)
+        std::fill_n(line_of.begin() + pl.lines[li].first, pl.lines[li].count, int32_t(li));
+    if (exact) {
+        std::vector<ExactAttributes> attr(pl.position.size());
+        for (size_t i = 0; i < attr.size(); ++i) attr[i] = {time_of(i), line_of[i], speed[i], arc_[i]};
+        attributes_buffer_ = immutable_buffer(attr.data(), attr.size() * sizeof(ExactAttributes));
+        static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+        points_buffer_ = immutable_buffer(pl.position.data(), pl.position.size() * sizeof(glm::vec3));
+    } else {
+        std::vector<QuantisedAttributes> attr(pl.position.size());
+        for (size_t i = 0; i < attr.size(); ++i)
+            attr[i] = {time_of(i), line_of[i], uint16_t(glm::packHalf1x16(speed[i] / speed_step_)),
+                       uint16_t(quantise(arc_[i], 0.0f, arc_step_, 65535))};
+        attributes_buffer_ = immutable_buffer(attr.data(), attr.size() * sizeof(QuantisedAttributes));
+        std::vector<PackedPosition> q(pl.position.size());
+        for (size_t i = 0; i < q.size(); ++i) q[i] = pack(quantised(pl.position[i]));
+        points_buffer_ = immutable_buffer(q.data(), q.size() * sizeof(PackedPosition));
+    }
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &points_tex_);
-    glTextureBuffer(points_tex_, GL_R32F, line_vbo_);
+    glTextureBuffer(points_tex_, exact ? GL_RGB32UI : GL_RG32UI, points_buffer_);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &attributes_tex_);
+    glTextureBuffer(attributes_tex_, exact ? GL_RGBA32F : GL_RGB32F, attributes_buffer_);
+
     glCreateVertexArrays(1, &line_vao_);
-    glVertexArrayVertexBuffer(line_vao_, 0, line_vbo_, 0, sizeof(LineVertex));
-    auto attrib = [&](GLuint loc, GLint n, GLuint offset) {
+    glVertexArrayVertexBuffer(line_vao_, 0, attributes_buffer_, 0, GLsizei(attribute_bytes(layout_)));
+    auto attrib = [&](GLuint loc, GLenum type, GLboolean normalized, GLuint offset) {
         glEnableVertexArrayAttrib(line_vao_, loc);
-        glVertexArrayAttribFormat(line_vao_, loc, n, GL_FLOAT, GL_FALSE, offset);
+        glVertexArrayAttribFormat(line_vao_, loc, 1, type, normalized, offset);
         glVertexArrayAttribBinding(line_vao_, loc, 0);
     };
-    attrib(0, 3, offsetof(LineVertex, position));
-    attrib(1, 1, offsetof(LineVertex, time));
-    attrib(2, 3, offsetof(LineVertex, velocity));
-    attrib(3, 3, offsetof(LineVertex, tangent));
-    glEnableVertexArrayAttrib(line_vao_, 4);
-    glVertexArrayAttribIFormat(line_vao_, 4, 1, GL_INT, offsetof(LineVertex, line_id));
-    glVertexArrayAttribBinding(line_vao_, 4, 0);
-    attrib(5, 1, offsetof(LineVertex, arc));
+    attrib(0, GL_FLOAT, GL_FALSE, offsetof(ExactAttributes, time));
+    glEnableVertexArrayAttrib(line_vao_, 1);
+    glVertexArrayAttribIFormat(line_vao_, 1, 1, GL_INT, offsetof(ExactAttributes, line_id));
+    glVertexArrayAttribBinding(line_vao_, 1, 0);
+    if (exact) {
+        attrib(2, GL_FLOAT, GL_FALSE, offsetof(ExactAttributes, speed));
+        attrib(3, GL_FLOAT, GL_FALSE, offsetof(ExactAttributes, arc));
+    } else {
+        attrib(2, GL_HALF_FLOAT, GL_FALSE, offsetof(QuantisedAttributes, speed));
+        attrib(3, GL_UNSIGNED_SHORT, GL_TRUE, offsetof(QuantisedAttributes, arc));
+    }
+}
 
-    if (scene.mesh && !scene.mesh->empty()) mesh_.upload(*scene.mesh);
+glm::uvec3 GpuScene::quantised(glm::vec3 p) const {
+    glm::uvec3 q;
+    for (int a = 0; a < 3; ++a) q[a] = quantise(p[a], points_origin_[a], points_step_[a], kAxisSteps);
+    return q;
+}
+
+glm::vec4 GpuScene::stored_point(size_t i) const {
+    const glm::vec3 p = cpu_->lines.position[i];
+    if (layout_ == PointLayout::exact) return glm::vec4(p, arc_[i]);
+    const float arc = float(quantise(arc_[i], 0.0f, arc_step_, 65535)) * arc_step_;
+    return glm::vec4(points_origin_ + glm::vec3(quantised(p)) * points_step_, arc);
+}
+
+void GpuScene::bind_points(const ShaderProgram& prog) const {
+    if (prog.declares("u_scene_points")) prog.bind_texture("u_scene_points", points_tex_);
+    if (prog.declares("u_scene_point_data")) prog.bind_texture("u_scene_point_data", attributes_tex_);
+    if (prog.declares("u_scene_points_origin")) prog.set("u_scene_points_origin", points_origin_);
+    if (prog.declares("u_scene_points_step")) prog.set("u_scene_points_step", points_step_);
+    if (prog.declares("u_scene_points_quantised")) prog.set("u_scene_points_quantised", layout_ == PointLayout::quantised ? 1 : 0);
+    // The arc attribute arrives normalised (0..1 of 65535 steps) when quantised, as it is when exact.
+    const float arc_scale = layout_ == PointLayout::quantised ? arc_step_ * 65535.0f : 1.0f;
+    if (prog.declares("u_scene_point_scale")) prog.set("u_scene_point_scale", glm::vec2(speed_step_, arc_scale));
 }
 
 void GpuScene::ranges(double t0, double t1, Ranges& out) const {

@@ -31,39 +31,67 @@ private:
     GLsizei count_ = 0;
 };
 
-// Vertex layout of line_vao(): location 0 position (vec3), 1 time (float), 2 velocity (vec3),
-// 3 tangent (vec3, unit, along the line), 4 line id (int, an integer attribute), 5 arc length
-// from the line's first point (float, world units).
+// The line points on the GPU, in two buffers (shaders/scene_points.glsl reads them):
+// - points_buffer(): per point its position: quantised to 21 bits an axis in the lines'
+//   bounding box, two words (PointLayout::quantised, the default: at most 1/4194302 of the
+//   box's side off, a few float steps), or 3 floats (PointLayout::exact);
+// - attributes_buffer(): per point its time (float), line id (int), speed and arc length from
+//   the line's first point (world units): quantised, the speed as a half float and the arc in
+//   16 bits of the longest line's (12 bytes); exact, floats (16 bytes). line_vao()'s attributes,
+//   locations 0 (time), 1 (line id, an integer attribute), 2 (speed), 3 (arc), as floats.
+// The tangent is not stored: the kit's vertex stage derives it from the neighbours (the central
+// difference, one-sided at a line's ends), as the culling and the density read the same positions.
+class ShaderProgram;
 class GpuScene {
 public:
+    enum class PointLayout { quantised, exact };
+    // PATHLET_POINT_LAYOUT=exact|quantised (default quantised); anything else is an error naming it.
+    static PointLayout default_point_layout();
+
     GpuScene() = default;
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
     ~GpuScene();
 
-    void upload(const Scene& scene);  // needs a current GL context
+    void upload(const Scene& scene, PointLayout layout = default_point_layout());  // needs a current GL context
     const Scene& cpu() const { return *cpu_; }
     bool has_mesh() const { return mesh_.index_count() > 0; }
+    PointLayout point_layout() const { return layout_; }
 
     GLuint line_vao() const { return line_vao_; }
-    // The same points as a buffer texture of floats (R32F: samplerBuffer, texelFetch(t, i).r) for
-    // compute passes: point i's position is at i * kPointFloats + kPositionFloat (3 floats), its
-    // time at i * kPointFloats + kTimeFloat. Owned by the scene; bind it to a sampler of yours.
-    GLuint points_texture() const { return points_tex_; }
-    static constexpr int kPointFloats = 12, kPositionFloat = 0, kTimeFloat = 3;
-    // The chunks, the level of detail and the points on the GPU, for the line kit's culling
-    // (uploaded with the scene): per chunk {vec3 lo; uint first; vec3 hi; uint last; uint line;
-    // 3 x uint} (std430, kGpuChunkBytes: its box, first and last point, line); per point its
-    // LineLod tolerance (float) and its position (3 floats, packed). Apart from the vertices,
-    // which at 48 bytes a point would pass the 128 MiB a storage block may be limited to (as on
-    // llvmpipe) at 2.8M points: these reach it at 2.8M chunks and 11M points.
+    GLuint points_buffer() const { return points_buffer_; }
+    GLuint attributes_buffer() const { return attributes_buffer_; }
+    // Binds the points to a program that includes scene_points.glsl: its samplers u_scene_points
+    // (positions, RG32UI or RGB32UI) and u_scene_point_data (RGB32F or RGBA32F: time and line id
+    // first), where declared, and the decoding's uniforms.
+    void bind_points(const ShaderProgram& prog) const;
+    // A point's position and arc length as the GPU decodes them, for tests and CPU checks.
+    glm::vec4 stored_point(size_t point) const;
+
+    // The chunks and the level of detail on the GPU, for the line kit's culling (uploaded with
+    // the scene): per chunk {vec3 lo; uint first; vec3 hi; uint last; uint line; 3 x uint}
+    // (std430, kGpuChunkBytes: its box, first and last point, line); per point its LineLod
+    // tolerance (float). The culling reads the positions from points_buffer(). Storage blocks
+    // may be limited to 128 MiB (as on llvmpipe): the quantised positions reach it at 16.7M
+    // points, the tolerances at 33M, the chunks at 2.8M chunks.
     static constexpr size_t kGpuChunkBytes = 48;
     GLuint chunk_buffer() const { return chunk_buffer_; }
     // Per line, its bundle (Pathlines::bundle_of) as a buffer texture of R32UI (usamplerBuffer,
     // texelFetch(t, line).r): the line kit's colormap=bundle reads it. 4 bytes a line.
     GLuint line_bundles_texture() const { return bundles_tex_; }
     GLuint lod_buffer() const { return lod_buffer_; }
-    GLuint position_buffer() const { return position_buffer_; }
+
+    // GPU memory of the line points, by buffer (what upload() allocates for them).
+    struct PointMemory {
+        size_t points = 0, chunks = 0;
+        size_t positions = 0, attributes = 0, lod = 0, chunk_boxes = 0;  // bytes
+        size_t total() const { return positions + attributes + lod + chunk_boxes; }
+        double per_point() const { return points ? double(total()) / double(points) : 0.0; }
+    };
+    // For `points` points in `chunks` chunks (LineChunks) with a layout: what upload() allocates.
+    static PointMemory point_memory(size_t points, size_t chunks, PointLayout layout);
+    PointMemory point_memory() const { return point_memory(point_count_, chunks_.chunks().size(), layout_); }
+    static const char* layout_name(PointLayout l) { return l == PointLayout::exact ? "exact" : "quantised"; }
     GLuint mesh_vao() const { return mesh_.vao(); }  // location 0 position, 1 normal; indexed
     GLsizei mesh_index_count() const { return mesh_.index_count(); }
 
@@ -105,8 +133,6 @@ public:
     // The widest line width any line pass has drawn this scene with (world units, before the
     // width hook, which is clamped to kMaxWidthHook): lines::screen_rect pads by it, so post
     // passes that skip the border never cut a wide line. Noted by lines::Drawer.
-    static constexpr size_t kLineVertexBytes = 48;  // GPU memory per line point (the vertex buffer)
-    static constexpr size_t kPointGpuBytes = kLineVertexBytes + 4 * sizeof(float);  // with its LOD tolerance and position for culling
     static constexpr float kMaxWidthHook = 4.0f;  // line_quad.geom's clamp (u_max_width_hook)
     void note_line_width(float w) const { widest_line_ = std::max(widest_line_, w); }
     float widest_line() const { return widest_line_; }
@@ -119,14 +145,22 @@ public:
 
 private:
     void release();
+    void upload_points(const Pathlines& pl);
     const Scene* cpu_ = nullptr;
     std::vector<float> arc_;  // per point, arc length from its line's first point
     LineLod lod_;
     LineChunks chunks_;
-    GLuint line_vao_ = 0, line_vbo_ = 0, points_tex_ = 0, chunk_buffer_ = 0, lod_buffer_ = 0, position_buffer_ = 0;
+    GLuint line_vao_ = 0, points_buffer_ = 0, attributes_buffer_ = 0, points_tex_ = 0, attributes_tex_ = 0;
+    GLuint chunk_buffer_ = 0, lod_buffer_ = 0;
     GLuint bundles_buffer_ = 0, bundles_tex_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;
+    PointLayout layout_ = PointLayout::quantised;
+    size_t point_count_ = 0;
+    // Stored -> data: position origin + code * step; speed code * speed step; arc code * arc step.
+    glm::vec3 points_origin_{0.0f}, points_step_{1.0f};
+    float speed_step_ = 1.0f, arc_step_ = 1.0f;
+    glm::uvec3 quantised(glm::vec3 position) const;
     float tmin_ = 0, tmax_ = 0, smin_ = 0, smax_ = 0;
     mutable float widest_line_ = 0;  // a record of use, not scene data
 };
