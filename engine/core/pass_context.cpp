@@ -102,7 +102,10 @@ const ShaderSource& PassContext::shaders() const { return impl_->shaders; }
 
 ShaderProgram& PassContext::program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
     std::vector<ShaderStage> stages;
-    for (const auto& f : files) stages.push_back({ShaderStage::of_extension(f), {impl_->shaders.find(f)}});
+    for (const auto& f : files) {
+        std::string file = impl_->shaders.find(f);  // the name is checked before its extension
+        stages.push_back({ShaderStage::of_extension(f), {std::move(file)}});
+    }
     return program_from(stages, defines);
 }
 

@@ -69,7 +69,10 @@ ShaderStage hook_stage(const ShaderSource& source, HookRole role, const std::str
 ShaderProgram& program(PassContext& ctx, const std::vector<std::string>& fragment, const Hooks& hooks,
                        const std::vector<std::string>& defines) {
     const ShaderSource& src = ctx.shaders();
-    auto own = [&](const std::string& name) { return ShaderStage{ShaderStage::of_extension(name), {src.find(name)}}; };
+    auto own = [&](const std::string& name) {
+        std::string file = src.find(name);  // the name is checked before its extension
+        return ShaderStage{ShaderStage::of_extension(name), {std::move(file)}};
+    };
     std::vector<ShaderStage> stages{own("line_kit.vert"), own("line_quad.geom"),
                                     hooks.width.empty() ? own("line_width_default.geom")
                                                         : hook_stage(src, HookRole::width, hooks.width)};

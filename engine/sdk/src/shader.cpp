@@ -75,7 +75,10 @@ std::string info_log(GLuint object, bool program) {
 ShaderProgram ShaderProgram::from_files(const std::vector<std::string>& names, const ShaderSource& source,
                                         const std::vector<std::string>& defines) {
     std::vector<ShaderStage> stages;
-    for (const auto& n : names) stages.push_back({ShaderStage::of_extension(n), {source.find(n)}});
+    for (const auto& n : names) {
+        std::string file = source.find(n);  // the name is checked before its extension
+        stages.push_back({ShaderStage::of_extension(n), {std::move(file)}});
+    }
     return build(stages, source, defines);
 }
 
