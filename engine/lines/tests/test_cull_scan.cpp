@@ -53,7 +53,9 @@ const ShaderProgram& scan_program(uint32_t per_thread) {
         if (d.rfind("CULL_SCAN_", 0) != 0) defines.push_back(d);
     for (const std::string& d : CullScan::defines(per_thread)) defines.push_back(d);
     return programs.emplace(per_thread, ShaderProgram::from_files({"line_cull_scan.comp"},
-                                                                  {std::string(PATHLET_SOURCE_DIR) + "/engine/lines/shaders"}, defines))
+                                                                  {std::string(PATHLET_SOURCE_DIR) + "/engine/lines/shaders",
+                                                                   std::string(PATHLET_SOURCE_DIR) + "/shaders"},
+                                                                  defines))
         .first->second;
 }
 

@@ -33,8 +33,8 @@ private:
 
 // The line points on the GPU, in two buffers (shaders/scene_points.glsl reads them):
 // - points_buffer(): per point its position: quantised to 21 bits an axis in the lines'
-//   bounding box, two words (PointLayout::quantised, the default: at most 1/4194302 of the
-//   box's side off, a few float steps), or 3 floats (PointLayout::exact);
+//   bounding box, two words (PointLayout::quantised: at most 1/4194302 of the box's side off,
+//   a few float steps), or 3 floats (PointLayout::exact, the default);
 // - attributes_buffer(): per point its time (float), line id (int), speed and arc length from
 //   the line's first point (world units): quantised, the speed as a half float and the arc in
 //   16 bits of the longest line's (12 bytes); exact, floats (16 bytes). line_vao()'s attributes,
@@ -45,7 +45,7 @@ class ShaderProgram;
 class GpuScene {
 public:
     enum class PointLayout { quantised, exact };
-    // PATHLET_POINT_LAYOUT=exact|quantised (default quantised); anything else is an error naming it.
+    // PATHLET_POINT_LAYOUT=exact|quantised (default exact); anything else is an error naming it.
     static PointLayout default_point_layout();
 
     GpuScene() = default;
@@ -155,7 +155,7 @@ private:
     GLuint bundles_buffer_ = 0, bundles_tex_ = 0;
     GpuMesh mesh_;
     Bounds bounds_;
-    PointLayout layout_ = PointLayout::quantised;
+    PointLayout layout_ = PointLayout::exact;
     size_t point_count_ = 0;
     // Stored -> data: position origin + code * step; speed code * speed step; arc code * arc step.
     glm::vec3 points_origin_{0.0f}, points_step_{1.0f};
