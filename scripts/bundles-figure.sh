@@ -62,17 +62,13 @@ render "$work/direction"
 render "$work/bundle" --set colormap=bundle
 /usr/bin/python3 - "$work" "$OUT_PNG" <<'PY'
 import sys
-from PIL import Image, ImageDraw, ImageFont
+from PIL import ImageFont
+sys.path.insert(0, "scripts/figures")
+from contact_sheet import row, save
 work, out = sys.argv[1], sys.argv[2]
-ims = [Image.open(f"{work}/{k}/tracts_lineao/00000.png").convert("RGB") for k in ("direction", "bundle")]
-W, H = ims[0].size
 font = ImageFont.truetype("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", 18)
-top, gap = 34, 8
-sheet = Image.new("RGB", (2 * W + gap, H + top), "white")
-draw = ImageDraw.Draw(sheet)
-for k, (im, label) in enumerate(zip(ims, ("default: direction colours", "--set colormap=bundle"))):
-    sheet.paste(im, (k * (W + gap), top))
-    draw.text((k * (W + gap) + 12, 8), label, fill=(30, 30, 30), font=font)
-sheet.save(out, optimize=True)
+sheet = row([f"{work}/{k}/tracts_lineao/00000.png" for k in ("direction", "bundle")],
+            ("default: direction colours", "--set colormap=bundle"), top=34, font=font, label_at=(12, 8))
+save(sheet, out, optimize=True)
 print(f"wrote {out} ({sheet.width}x{sheet.height})")
 PY

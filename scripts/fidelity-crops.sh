@@ -25,31 +25,23 @@ echo "edges, variant 1 against --ssaa 4: $(/usr/bin/python3 "$METRIC" "$OUT"/pla
 /usr/bin/python3 - "$OUT" "$DOCS" <<'PY'
 import sys
 import numpy as np
-from PIL import Image, ImageDraw
+from PIL import Image
+sys.path.insert(0, 'scripts/figures')
+from contact_sheet import row, save
 out, docs = sys.argv[1], sys.argv[2]
 BOX = (690, 430, 800, 560)  # the descending aorta at 1280x720, every line whole
 SCALE = 4
 def load(path):
     return np.asarray(Image.open(path).convert('RGB'), dtype=np.float64)
-def sheet(images, labels, path):
-    crops = [Image.fromarray(np.clip(im, 0, 255).astype(np.uint8)).crop(BOX) for im in images]
-    w, h = crops[0].size
-    s = Image.new('RGB', (len(crops) * (w * SCALE + 8) - 8, h * SCALE + 18), 'white')
-    d = ImageDraw.Draw(s)
-    for k, (c, label) in enumerate(zip(crops, labels)):
-        x = k * (w * SCALE + 8)
-        s.paste(c.resize((w * SCALE, h * SCALE), Image.NEAREST), (x, 18))
-        d.text((x + 4, 2), label, fill='black')
-    s.save(path)
 def difference(a, b):
     return 255.0 - np.minimum(np.abs(a - b).max(axis=2, keepdims=True) * 4.0, 255.0).repeat(3, axis=2)
 plain = load(f'{out}/plain/variant1_lineao/00000.png')
 ssaa = load(f'{out}/ssaa/variant1_lineao/00000.png')
-sheet([plain, ssaa, difference(plain, ssaa)], ['variant 1', '--ssaa 4 (reference)', '|difference| x4 (dark = off)'],
-      f'{docs}/fidelity_edges.png')
+save(row([plain, ssaa, difference(plain, ssaa)], ['variant 1', '--ssaa 4 (reference)', '|difference| x4 (dark = off)'],
+         BOX, SCALE), f'{docs}/fidelity_edges.png')
 ao = load(f'{out}/q/variant1_vao_ao.png')
 rt = load(f'{out}/q/variant1_vao_reference.png')
-sheet([ao, rt, difference(ao, rt)], ['volume AO', 'ray-traced AO (reference)', '|difference| x4 (dark = off)'],
-      f'{docs}/fidelity_vao.png')
+save(row([ao, rt, difference(ao, rt)], ['volume AO', 'ray-traced AO (reference)', '|difference| x4 (dark = off)'],
+         BOX, SCALE), f'{docs}/fidelity_vao.png')
 print(f'wrote {docs}/fidelity_edges.png and {docs}/fidelity_vao.png (crop {BOX}, {SCALE}x)', file=sys.stderr)
 PY

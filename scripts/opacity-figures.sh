@@ -21,17 +21,11 @@ for g in variant2_oit variant4_opacity; do
 done
 /usr/bin/python3 - "$OUT" "$DOCS" <<'PY'
 import sys
-from PIL import Image, ImageDraw
+sys.path.insert(0, "scripts/figures")
+from contact_sheet import row, save
 out, docs = sys.argv[1], sys.argv[2]
 labels = ["variant 2 (end fade)", "variant 4 (opacity optimization)"]
 for view, box, name in (("side", (200, 0, 760, 540), "variant4_aneurysm"), ("front", (300, 0, 660, 540), "variant4_overview")):
-    ims = [Image.open(f"{out}/{view}/{g}/00000.png").convert("RGB").crop(box) for g in ("variant2_oit", "variant4_opacity")]
-    w, h = ims[0].size
-    sheet = Image.new("RGB", (2 * w + 8, h + 18), "white")
-    d = ImageDraw.Draw(sheet)
-    for k, im in enumerate(ims):
-        sheet.paste(im, (k * (w + 8), 18))
-        d.text((k * (w + 8) + 4, 3), labels[k], fill="black")
-    sheet.save(f"{docs}/{name}.png")
-    print(f"{docs}/{name}.png")
+    print(save(row([f"{out}/{view}/{g}/00000.png" for g in ("variant2_oit", "variant4_opacity")], labels, box,
+                   label_at=(4, 3)), f"{docs}/{name}.png"))
 PY

@@ -22,34 +22,17 @@ for g in variant1_lineao variant1_vao; do
 done
 /usr/bin/python3 - "$OUT" "$DOCS" <<'PY'
 import sys
-from PIL import Image, ImageDraw
+sys.path.insert(0, 'scripts/figures')
+from contact_sheet import row, stack, save
 out, docs = sys.argv[1], sys.argv[2]
-def row(paths, box, labels, scale=2):
-    ims = [Image.open(p).convert('RGB').crop(box) for p in paths]
-    w, h = ims[0].size
-    sheet = Image.new('RGB', (len(ims) * (w * scale + 8) - 8, h * scale + 18), 'white')
-    d = ImageDraw.Draw(sheet)
-    for k, (im, label) in enumerate(zip(ims, labels)):
-        x = k * (w * scale + 8)
-        sheet.paste(im.resize((w * scale, h * scale), Image.NEAREST), (x, 18))
-        d.text((x + 4, 2), label, fill='black')
-    return sheet
-def stack(rows):
-    w = max(r.width for r in rows)
-    sheet = Image.new('RGB', (w, sum(r.height for r in rows) + 10 * (len(rows) - 1)), 'white')
-    y = 0
-    for r in rows:
-        sheet.paste(r, (0, y))
-        y += r.height + 10
-    return sheet
 arch = (380, 10, 620, 250)
-top = row([f'{out}/front/variant1_lineao/00000.png', f'{out}/front/variant1_vao/00000.png'], arch,
-          ['variant1_lineao (LineAO)', 'variant1_vao (volume AO)'])
+top = row([f'{out}/front/variant1_lineao/00000.png', f'{out}/front/variant1_vao/00000.png'],
+          ['variant1_lineao (LineAO)', 'variant1_vao (volume AO)'], arch, scale=2)
 bottom = row([f'{out}/q/variant1_lineao_ao.png', f'{out}/q/variant1_vao_ao.png', f'{out}/q/variant1_vao_reference.png'],
-             arch, ['LineAO', 'volume AO', 'ray-traced AO (reference)'], scale=1)
-stack([top, bottom]).save(f'{docs}/vao_compare.png')
+             ['LineAO', 'volume AO', 'ray-traced AO (reference)'], arch)
+save(stack([top, bottom]), f'{docs}/vao_compare.png')
 vortex = (440, 160, 580, 300)
-row([f'{out}/side/variant1_lineao/00000.png', f'{out}/side/variant1_vao/00000.png'], vortex,
-    ['variant1_lineao', 'variant1_vao'], scale=3).save(f'{docs}/vao_vortex.png')
+save(row([f'{out}/side/variant1_lineao/00000.png', f'{out}/side/variant1_vao/00000.png'],
+         ['variant1_lineao', 'variant1_vao'], vortex, scale=3), f'{docs}/vao_vortex.png')
 PY
 echo "vao-figures: wrote $DOCS/vao_compare.png, $DOCS/vao_vortex.png"
