@@ -101,26 +101,13 @@ bool axis_codes(std::string_view code, int axis[3], int sign[3]) {
     return true;
 }
 
-Pathlines read_trk_impl(std::string_view b, const std::string& file, LoadReport& report) {
-    if (b.size() < kTrkHeader)
-        fail_at(file, at_byte(b.size()), "a TrackVis header is 1000 bytes but the file has only " + std::to_string(b.size()) +
-                                             " (truncated, or not a .trk file)");
-    if (b.substr(0, 5) != "TRACK") fail_at(file, at_byte(0), "not a TrackVis file (the magic \"TRACK\" is missing)");
-    // hdr_size (1000) tells the byte order.
-    bool big = false;
-    if (load<int32_t>(b, 996, false) != 1000) {
-        if (load<int32_t>(b, 996, true) != 1000)
-            fail_at(file, at_byte(996), "hdr_size is " + std::to_string(load<int32_t>(b, 996, false)) +
-                                            ", not 1000 (corrupt header, or not a TrackVis file)");
-        big = true;
-    }
-    const int version = load<int32_t>(b, 992, big);
-    if (version != 1 && version != 2)
-        fail_at(file, at_byte(992), "TrackVis version " + std::to_string(version) + " is not supported (1 or 2)");
-    const int ns = load<int16_t>(b, 36, big), np = load<int16_t>(b, 238, big);
-    if (ns < 0 || ns > kTrkMaxValues) fail_at(file, at_byte(36), "n_scalars " + std::to_string(ns) + " is out of range (0.." + std::to_string(kTrkMaxValues) + ")");
-    if (np < 0 || np > kTrkMaxValues)
-        fail_at(file, at_byte(238), "n_properties " + std::to_string(np) + " is out of range (0.." + std::to_string(kTrkMaxValues) + ")");
+// The header's voxmm -> world transform: vox_to_ras (row-major, version 2, used when its [3][3]
+// is not 0) applied to voxel indices, or the identity (points stay voxmm) with a warning.
+struct TrkTransform {
+    glm::mat4 voxmm_to_world{1.0f};
+    bool has_matrix = false;
+};
+TrkTransform trk_transform(std::string_view b, const std::string& file, bool big, int version, LoadReport& report) {
     glm::ivec3 dims;
     glm::vec3 vs;
     for (int k = 0; k < 3; ++k) {
@@ -185,6 +172,43 @@ Pathlines read_trk_impl(std::string_view b, const std::string& file, LoadReport&
                                   " no voxel-to-RAS matrix: points stay in TrackVis voxmm coordinates");
     }
 
+    return {voxmm_to_world, has_matrix};
+}
+
+// One report line a named per-point or per-track array, its value range over the file.
+void report_trk_arrays(const std::vector<TrkName>& names, const std::vector<Range>& ranges, const char* per,
+                       LoadReport& report) {
+    size_t k = 0;
+    for (const auto& s : names) {
+        Range r;
+        for (int c = 0; c < s.count; ++c, ++k) r.lo = std::min(r.lo, ranges[k].lo), r.hi = std::max(r.hi, ranges[k].hi);
+        report.arrays.push_back(s.name + " (per " + per + (s.count > 1 ? ", " + std::to_string(s.count) + " comp" : "") + ", " +
+                                r.text() + "; not drawn)");
+    }
+}
+
+Pathlines read_trk_impl(std::string_view b, const std::string& file, LoadReport& report) {
+    if (b.size() < kTrkHeader)
+        fail_at(file, at_byte(b.size()), "a TrackVis header is 1000 bytes but the file has only " + std::to_string(b.size()) +
+                                             " (truncated, or not a .trk file)");
+    if (b.substr(0, 5) != "TRACK") fail_at(file, at_byte(0), "not a TrackVis file (the magic \"TRACK\" is missing)");
+    // hdr_size (1000) tells the byte order.
+    bool big = false;
+    if (load<int32_t>(b, 996, false) != 1000) {
+        if (load<int32_t>(b, 996, true) != 1000)
+            fail_at(file, at_byte(996), "hdr_size is " + std::to_string(load<int32_t>(b, 996, false)) +
+                                            ", not 1000 (corrupt header, or not a TrackVis file)");
+        big = true;
+    }
+    const int version = load<int32_t>(b, 992, big);
+    if (version != 1 && version != 2)
+        fail_at(file, at_byte(992), "TrackVis version " + std::to_string(version) + " is not supported (1 or 2)");
+    const int ns = load<int16_t>(b, 36, big), np = load<int16_t>(b, 238, big);
+    if (ns < 0 || ns > kTrkMaxValues) fail_at(file, at_byte(36), "n_scalars " + std::to_string(ns) + " is out of range (0.." + std::to_string(kTrkMaxValues) + ")");
+    if (np < 0 || np > kTrkMaxValues)
+        fail_at(file, at_byte(238), "n_properties " + std::to_string(np) + " is out of range (0.." + std::to_string(kTrkMaxValues) + ")");
+    const auto [voxmm_to_world, has_matrix] = trk_transform(b, file, big, version, report);
+
     const auto scalars = trk_names(b, 38, ns, "scalar_");
     const auto props = trk_names(b, 240, np, "property_");
     std::vector<Range> srange(static_cast<size_t>(ns)), prange(static_cast<size_t>(np));
@@ -229,20 +253,8 @@ Pathlines read_trk_impl(std::string_view b, const std::string& file, LoadReport&
 
     report.format = "TrackVis .trk v" + std::to_string(version) + (big ? ", big-endian" : ", little-endian") +
                     (has_matrix ? ", voxel-to-RAS" : ", voxmm");
-    size_t k = 0;
-    for (auto& s : scalars) {
-        Range r;
-        for (int c = 0; c < s.count; ++c, ++k) r.lo = std::min(r.lo, srange[k].lo), r.hi = std::max(r.hi, srange[k].hi);
-        report.arrays.push_back(s.name + " (per point" + (s.count > 1 ? ", " + std::to_string(s.count) + " comp" : "") + ", " +
-                                r.text() + "; not drawn)");
-    }
-    k = 0;
-    for (auto& s : props) {
-        Range r;
-        for (int c = 0; c < s.count; ++c, ++k) r.lo = std::min(r.lo, prange[k].lo), r.hi = std::max(r.hi, prange[k].hi);
-        report.arrays.push_back(s.name + " (per track" + (s.count > 1 ? ", " + std::to_string(s.count) + " comp" : "") + ", " +
-                                r.text() + "; not drawn)");
-    }
+    report_trk_arrays(scalars, srange, "point", report);
+    report_trk_arrays(props, prange, "track", report);
     return pl;
 }
 
