@@ -92,6 +92,63 @@ struct Array {
     std::vector<float> values;
 };
 
+// How the file stores its arrays: byte order, block header size, zlib, and where the appended
+// section starts (npos: none) and whether it is base64.
+struct Encoding {
+    bool big = false;
+    size_t header_size = 4;
+    bool zlib = false;
+    size_t base = std::string_view::npos;
+    bool appended_b64 = false;
+};
+
+// The values of one <DataArray> of a grid of n points (ascii, inline binary or appended).
+Array read_data_array(std::string_view x, const Tag& da, const Encoding& enc, size_t n, const std::string& path) {
+    Array a;
+    a.name = attr(da, "Name");
+    a.comps = std::max(1, std::atoi(attr(da, "NumberOfComponents", "1").c_str()));
+    const std::string type = attr(da, "type"), format = attr(da, "format", "ascii");
+    const size_t ts = type_size(type);
+    if (ts == 0) fail(path, da.begin, "array '" + a.name + "': unsupported type '" + type + "'");
+    const size_t count = n * size_t(a.comps);
+    if (count > x.size() * 1100 / ts + 16) fail(path, da.begin, "array '" + a.name + "': declared size exceeds what the file can hold");
+    const size_t limit = std::min<size_t>(count * ts, x.size() * 1100 + 1024);
+    std::string bytes;
+    try {
+        if (format == "ascii") {
+            const size_t close = x.find("</DataArray>", da.end);
+            const auto v = numbers(std::string(x.substr(da.end, close - da.end)));
+            if (v.size() < count) fail(path, da.end, "array '" + a.name + "': " + std::to_string(v.size()) + " values, expected " + std::to_string(count));
+            a.values.assign(v.begin(), v.begin() + std::ptrdiff_t(count));
+        } else if (format == "binary") {
+            const size_t close = x.find("</DataArray>", da.end);
+            const std::string raw = vti::base64_decode(x.substr(da.end, close - da.end));
+            bytes = vti::decode_block(raw, enc.header_size, enc.zlib, limit).bytes;
+        } else if (format == "appended") {
+            if (enc.base == std::string_view::npos) fail(path, da.begin, "appended array but no <AppendedData>");
+            const long long off_signed = std::atoll(attr(da, "offset").c_str());
+            if (off_signed < 0) fail(path, da.begin, "array '" + a.name + "': negative offset");
+            const size_t off = size_t(off_signed);
+            if (off > x.size() - enc.base) fail(path, da.begin, "array '" + a.name + "': offset past the end of the file");
+            std::string_view rest = x.substr(enc.base + off);
+            if (enc.appended_b64) rest = rest.substr(0, rest.find("</AppendedData>"));  // text, so safe to search
+            bytes = enc.appended_b64 ? vti::decode_block(vti::base64_decode(rest), enc.header_size, enc.zlib, limit).bytes
+                                     : vti::decode_block(rest, enc.header_size, enc.zlib, limit).bytes;
+        } else {
+            fail(path, da.begin, "array '" + a.name + "': unknown format '" + format + "'");
+        }
+    } catch (const std::runtime_error& e) {
+        if (dynamic_cast<const DataError*>(&e)) throw;
+        fail(path, da.begin, "array '" + a.name + "': " + e.what());
+    }
+    if (a.values.empty()) {
+        if (bytes.size() < count * ts) fail(path, da.begin, "array '" + a.name + "': " + std::to_string(bytes.size()) + " bytes, expected " + std::to_string(count * ts));
+        a.values.resize(count);
+        for (size_t i = 0; i < count; ++i) a.values[i] = decode(bytes.data() + i * ts, type, enc.big);
+    }
+    return a;
+}
+
 }  // namespace
 
 VelocityField read_vti_field(std::string_view x, const std::string& path) {
@@ -100,10 +157,11 @@ VelocityField read_vti_field(std::string_view x, const std::string& path) {
     if (!file) fail(path, 0, "not a VTK XML file");
     if (file->attr.count("type") && file->attr.at("type") != "ImageData")
         fail(path, file->begin, "VTK XML type " + file->attr.at("type") + " is not ImageData");
-    const bool big = file->attr.count("byte_order") && file->attr.at("byte_order") == "BigEndian";
-    const size_t hs = file->attr.count("header_type") && file->attr.at("header_type") == "UInt64" ? 8 : 4;
-    const bool zlib = file->attr.count("compressor") && !file->attr.at("compressor").empty();
-    if (zlib && file->attr.at("compressor") != "vtkZLibDataCompressor")
+    Encoding enc;
+    enc.big = file->attr.count("byte_order") && file->attr.at("byte_order") == "BigEndian";
+    enc.header_size = file->attr.count("header_type") && file->attr.at("header_type") == "UInt64" ? 8 : 4;
+    enc.zlib = file->attr.count("compressor") && !file->attr.at("compressor").empty();
+    if (enc.zlib && file->attr.at("compressor") != "vtkZLibDataCompressor")
         fail(path, file->begin, "unsupported compressor " + file->attr.at("compressor"));
 
     const auto image = find_tag(x, "ImageData", file->end, appended_at, path);
@@ -127,66 +185,21 @@ VelocityField read_vti_field(std::string_view x, const std::string& path) {
     const size_t n = f.grid.count();
 
     // Appended section: offsets count from just after the '_'.
-    size_t base = std::string_view::npos;
-    bool appended_b64 = false;
     if (appended_at < x.size()) {
         const auto app = find_tag(x, "AppendedData", appended_at, x.size(), path);
         if (!app) fail(path, appended_at, "'<AppendedData' is not a complete <AppendedData ...> tag");
-        appended_b64 = attr(*app, "encoding") == "base64";
-        base = x.find('_', app->end);
-        if (base == std::string_view::npos) fail(path, app->end, "no '_' starting the appended data");
-        ++base;
+        enc.appended_b64 = attr(*app, "encoding") == "base64";
+        enc.base = x.find('_', app->end);
+        if (enc.base == std::string_view::npos) fail(path, app->end, "no '_' starting the appended data");
+        ++enc.base;
     }
 
     const auto pd = find_tag(x, "PointData", image->end, appended_at, path);
     if (!pd) fail(path, image->end, "no <PointData>");
     const size_t pd_end = std::min(x.find("</PointData>", pd->end), appended_at);
     std::vector<Array> arrays;
-    for (auto da = find_tag(x, "DataArray", pd->end, pd_end, path); da; da = find_tag(x, "DataArray", da->end, pd_end, path)) {
-        Array a;
-        a.name = attr(*da, "Name");
-        a.comps = std::max(1, std::atoi(attr(*da, "NumberOfComponents", "1").c_str()));
-        const std::string type = attr(*da, "type"), format = attr(*da, "format", "ascii");
-        const size_t ts = type_size(type);
-        if (ts == 0) fail(path, da->begin, "array '" + a.name + "': unsupported type '" + type + "'");
-        const size_t count = n * size_t(a.comps);
-        if (count > x.size() * 1100 / ts + 16) fail(path, da->begin, "array '" + a.name + "': declared size exceeds what the file can hold");
-        const size_t limit = std::min<size_t>(count * ts, x.size() * 1100 + 1024);
-        std::string bytes;
-        try {
-            if (format == "ascii") {
-                const size_t close = x.find("</DataArray>", da->end);
-                const auto v = numbers(std::string(x.substr(da->end, close - da->end)));
-                if (v.size() < count) fail(path, da->end, "array '" + a.name + "': " + std::to_string(v.size()) + " values, expected " + std::to_string(count));
-                a.values.assign(v.begin(), v.begin() + std::ptrdiff_t(count));
-            } else if (format == "binary") {
-                const size_t close = x.find("</DataArray>", da->end);
-                const std::string raw = vti::base64_decode(x.substr(da->end, close - da->end));
-                bytes = vti::decode_block(raw, hs, zlib, limit).bytes;
-            } else if (format == "appended") {
-                if (base == std::string_view::npos) fail(path, da->begin, "appended array but no <AppendedData>");
-                const long long off_signed = std::atoll(attr(*da, "offset").c_str());
-                if (off_signed < 0) fail(path, da->begin, "array '" + a.name + "': negative offset");
-                const size_t off = size_t(off_signed);
-                if (off > x.size() - base) fail(path, da->begin, "array '" + a.name + "': offset past the end of the file");
-                std::string_view rest = x.substr(base + off);
-                if (appended_b64) rest = rest.substr(0, rest.find("</AppendedData>"));  // text, so safe to search
-                bytes = appended_b64 ? vti::decode_block(vti::base64_decode(rest), hs, zlib, limit).bytes
-                                     : vti::decode_block(rest, hs, zlib, limit).bytes;
-            } else {
-                fail(path, da->begin, "array '" + a.name + "': unknown format '" + format + "'");
-            }
-        } catch (const std::runtime_error& e) {
-            if (dynamic_cast<const DataError*>(&e)) throw;
-            fail(path, da->begin, "array '" + a.name + "': " + e.what());
-        }
-        if (a.values.empty()) {
-            if (bytes.size() < count * ts) fail(path, da->begin, "array '" + a.name + "': " + std::to_string(bytes.size()) + " bytes, expected " + std::to_string(count * ts));
-            a.values.resize(count);
-            for (size_t i = 0; i < count; ++i) a.values[i] = decode(bytes.data() + i * ts, type, big);
-        }
-        arrays.push_back(std::move(a));
-    }
+    for (auto da = find_tag(x, "DataArray", pd->end, pd_end, path); da; da = find_tag(x, "DataArray", da->end, pd_end, path))
+        arrays.push_back(read_data_array(x, *da, enc, n, path));
 
     // Velocity: the PointData "Vectors" array, else the first 3-component one.
     auto lower = [](std::string s) { std::transform(s.begin(), s.end(), s.begin(), ::tolower); return s; };
