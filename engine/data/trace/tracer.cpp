@@ -150,12 +150,42 @@ TracedLine integrate_line(const FlowSampler& flow, glm::vec3 seed, float t0, con
     return line;
 }
 
-Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, const Progress& progress, TraceStats* stats_out) {
+namespace {
+
+void check_trace_inputs(const VelocityField& field, const TraceOptions& o) {
     const Grid& g = field.grid;
     if (field.frames.empty() || g.count() == 0 || field.frames[0].size() != g.count())
         throw DataError(field.source + ": velocity field is empty or inconsistent");
     if (!(o.step > 0.0f) || !(o.time_end > o.time_begin) || !(o.max_line_time > 0.0f))
         throw DataError(field.source + ": trace options need step > 0, time_end > time_begin, max_line_time > 0");
+}
+
+// Seed order: vessel voxels sorted by a hash, so consecutive seeds are spread out.
+std::vector<std::pair<uint64_t, uint32_t>> seed_order(const VelocityField& field, uint64_t seed) {
+    std::vector<std::pair<uint64_t, uint32_t>> keyed;
+    for (size_t i = 0; i < field.grid.count(); ++i)
+        if (field.inside_voxel(i)) keyed.emplace_back(hash64(i, seed), uint32_t(i));
+    std::sort(keyed.begin(), keyed.end());
+    return keyed;
+}
+
+// Calls fn at a polyline's points and between them every `sub` or less: marks the voxels it
+// crosses (sub-steps of half a voxel), feeds the proximity hash.
+template <class Fn>
+void walk_polyline(const std::vector<glm::vec3>& pts, float sub, const Fn& fn) {
+    if (pts.empty()) return;
+    fn(pts[0]);
+    for (size_t i = 1; i < pts.size(); ++i) {
+        const int n = std::max(1, int(std::ceil(glm::length(pts[i] - pts[i - 1]) / sub)));
+        for (int k = 1; k <= n; ++k) fn(pts[i - 1] + (pts[i] - pts[i - 1]) * (float(k) / float(n)));
+    }
+}
+
+}  // namespace
+
+Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, const Progress& progress, TraceStats* stats_out) {
+    check_trace_inputs(field, o);
+    const Grid& g = field.grid;
 
     const FlowSampler flow(field, o.periodic, o.pulsatile);
     const float min_speed = o.min_speed_fraction * field.max_speed() * (o.pulsatile ? o.pulsatile->peak : 1.0f);
@@ -163,11 +193,7 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
     const int threads = o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     const size_t batch = size_t(std::max(1, o.batch));
 
-    // Seed order: vessel voxels sorted by a hash, so consecutive seeds are spread out.
-    std::vector<std::pair<uint64_t, uint32_t>> keyed;
-    for (size_t i = 0; i < g.count(); ++i)
-        if (field.inside_voxel(i)) keyed.emplace_back(hash64(i, o.seed), uint32_t(i));
-    std::sort(keyed.begin(), keyed.end());
+    const std::vector<std::pair<uint64_t, uint32_t>> keyed = seed_order(field, o.seed);
 
     TraceStats st;
     st.vessel_voxels = keyed.size();
@@ -185,15 +211,6 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
     auto mark_near = [&](glm::vec3 p) {
         const glm::ivec3 c = g.nearest(p);
         if (g.in_range(c) && state[g.index(c)] == kFree) state[g.index(c)] = kNear;
-    };
-    // Marks voxels crossed by a polyline (sub-steps of half a voxel) / feeds the proximity hash.
-    auto walk = [&](const std::vector<glm::vec3>& pts, float sub, const auto& fn) {
-        if (pts.empty()) return;
-        fn(pts[0]);
-        for (size_t i = 1; i < pts.size(); ++i) {
-            const int n = std::max(1, int(std::ceil(glm::length(pts[i] - pts[i - 1]) / sub)));
-            for (int k = 1; k <= n; ++k) fn(pts[i - 1] + (pts[i] - pts[i - 1]) * (float(k) / float(n)));
-        }
     };
     // Accepted points: `near` up to the last batch (queried in parallel), `near_batch` this
     // batch (queried in order while accepting) - together the same answer as one hash.
@@ -236,15 +253,15 @@ Pathlines trace_pathlines(const VelocityField& field, const TraceOptions& o, con
             if (o.min_distance > 0.0f && close_fraction(c) >= o.close_fraction) {
                 // Its voxels are within min_distance of accepted lines: no need to seed there again.
                 ++st.rejected_close;
-                walk(c.line.position, 0.5f * g.min_spacing(), mark_near);
+                walk_polyline(c.line.position, 0.5f * g.min_spacing(), mark_near);
                 continue;
             }
             if (o.max_lines && out.lines.size() >= o.max_lines) break;
             append_line(out, c.line);
             accepted.push_back(c.voxel);
-            walk(c.line.position, 0.5f * g.min_spacing(), cover);
+            walk_polyline(c.line.position, 0.5f * g.min_spacing(), cover);
             cover(g.point(g.coord(c.voxel)));
-            if (o.min_distance > 0.0f) walk(c.line.position, 0.5f * o.min_distance, [&](glm::vec3 p) { near_batch.insert(p); });
+            if (o.min_distance > 0.0f) walk_polyline(c.line.position, 0.5f * o.min_distance, [&](glm::vec3 p) { near_batch.insert(p); });
         }
         near.merge(near_batch);
         report(progress, keyed.empty() ? 1.0 : double(cursor) / double(keyed.size()), "tracing");
