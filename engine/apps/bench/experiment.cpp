@@ -70,18 +70,9 @@ struct Ctx {
     }
 };
 
-}  // namespace
-
-Experiment parse_experiment(const json& j, const std::string& origin) {
-    Ctx c{origin};
-    c.keys(j, "", {"$schema", "name", "description", "graphs", "sizes", "time", "frames", "warmup", "set", "camera",
-                   "orbit_deg_per_s", "sweep", "data"});
-    Experiment e;
-    if (j.contains("name")) e.name = c.str(j["name"], "/name");
-    if (e.name.empty()) e.name = std::filesystem::path(origin).stem().string();
-    if (j.contains("description")) e.description = c.str(j["description"], "/description");
-    if (!j.contains("graphs")) c.fail("", "missing 'graphs' (a list of graph files or shipped names)");
-    const json& gs = j["graphs"];
+// "graphs": names or {"graph", "label", "set"}; a graph file found beside the experiment file.
+std::vector<ExperimentGraph> parse_graphs(const Ctx& c, const json& gs, const std::string& origin) {
+    std::vector<ExperimentGraph> graphs;
     if (!gs.is_array() || gs.empty()) c.fail("/graphs", "expected a non-empty array");
     for (size_t i = 0; i < gs.size(); ++i) {
         const std::string p = "/graphs/" + std::to_string(i);
@@ -100,10 +91,55 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
         }
         if (g.graph.empty()) c.fail(p, "empty graph name");
         if (g.label.empty()) g.label = g.graph;
-        for (const auto& other : e.graphs)
+        for (const auto& other : graphs)
             if (other.label == g.label) c.fail(p, "label '" + g.label + "' is used twice; give one a \"label\"");
-        e.graphs.push_back(g);
+        graphs.push_back(g);
     }
+    return graphs;
+}
+
+// "data": data sets, each a phantom preset or a file (with an optional mesh) beside the experiment file.
+std::vector<DataSet> parse_data(const Ctx& c, const json& d, const std::string& origin) {
+    std::vector<DataSet> data;
+    if (!d.is_array() || d.empty()) c.fail("/data", "expected a non-empty array of {\"phantom\": ...} or {\"file\": ...}");
+    const std::filesystem::path base = std::filesystem::path(origin).parent_path();
+    for (size_t i = 0; i < d.size(); ++i) {
+        const std::string p = "/data/" + std::to_string(i);
+        c.keys(d[i], p, {"label", "phantom", "file", "mesh"});
+        DataSet ds;
+        if (d[i].contains("label")) ds.label = c.str(d[i]["label"], p + "/label");
+        if (d[i].contains("phantom")) ds.phantom = c.str(d[i]["phantom"], p + "/phantom");
+        auto rel = [&](const std::string& f) {
+            std::filesystem::path fp(f);
+            return fp.is_relative() && !base.empty() ? (base / fp).string() : f;
+        };
+        if (d[i].contains("file")) ds.file = rel(c.str(d[i]["file"], p + "/file"));
+        if (d[i].contains("mesh")) ds.mesh = rel(c.str(d[i]["mesh"], p + "/mesh"));
+        if (ds.phantom.empty() == ds.file.empty()) c.fail(p, "give exactly one of 'phantom' (study, small) and 'file'");
+        if (!ds.phantom.empty() && ds.phantom != "study" && ds.phantom != "small")
+            c.fail(p + "/phantom", "unknown preset '" + ds.phantom + "'" + did_you_mean(ds.phantom, {"study", "small"}) +
+                                       "; presets: study, small");
+        if (!ds.file.empty() && !std::filesystem::exists(ds.file)) c.fail(p + "/file", "no such file: " + ds.file);
+        if (!ds.mesh.empty() && !std::filesystem::exists(ds.mesh)) c.fail(p + "/mesh", "no such file: " + ds.mesh);
+        if (ds.label.empty())
+            ds.label = ds.phantom.empty() ? std::filesystem::path(ds.file).stem().string() : ds.phantom;
+        data.push_back(ds);
+    }
+    return data;
+}
+
+}  // namespace
+
+Experiment parse_experiment(const json& j, const std::string& origin) {
+    Ctx c{origin};
+    c.keys(j, "", {"$schema", "name", "description", "graphs", "sizes", "time", "frames", "warmup", "set", "camera",
+                   "orbit_deg_per_s", "sweep", "data"});
+    Experiment e;
+    if (j.contains("name")) e.name = c.str(j["name"], "/name");
+    if (e.name.empty()) e.name = std::filesystem::path(origin).stem().string();
+    if (j.contains("description")) e.description = c.str(j["description"], "/description");
+    if (!j.contains("graphs")) c.fail("", "missing 'graphs' (a list of graph files or shipped names)");
+    e.graphs = parse_graphs(c, j["graphs"], origin);
     if (j.contains("sizes")) {
         const json& s = j["sizes"];
         if (!s.is_array() || s.empty()) c.fail("/sizes", "expected a non-empty array of \"WxH\" strings");
@@ -153,33 +189,7 @@ Experiment parse_experiment(const json& j, const std::string& origin) {
         for (size_t i = 0; i < s["values"].size(); ++i)
             e.sweep.values.push_back(c.scalar(s["values"][i], "/sweep/values/" + std::to_string(i)));
     }
-    if (j.contains("data")) {
-        const json& d = j["data"];
-        if (!d.is_array() || d.empty()) c.fail("/data", "expected a non-empty array of {\"phantom\": ...} or {\"file\": ...}");
-        const std::filesystem::path base = std::filesystem::path(origin).parent_path();
-        for (size_t i = 0; i < d.size(); ++i) {
-            const std::string p = "/data/" + std::to_string(i);
-            c.keys(d[i], p, {"label", "phantom", "file", "mesh"});
-            DataSet ds;
-            if (d[i].contains("label")) ds.label = c.str(d[i]["label"], p + "/label");
-            if (d[i].contains("phantom")) ds.phantom = c.str(d[i]["phantom"], p + "/phantom");
-            auto rel = [&](const std::string& f) {
-                std::filesystem::path fp(f);
-                return fp.is_relative() && !base.empty() ? (base / fp).string() : f;
-            };
-            if (d[i].contains("file")) ds.file = rel(c.str(d[i]["file"], p + "/file"));
-            if (d[i].contains("mesh")) ds.mesh = rel(c.str(d[i]["mesh"], p + "/mesh"));
-            if (ds.phantom.empty() == ds.file.empty()) c.fail(p, "give exactly one of 'phantom' (study, small) and 'file'");
-            if (!ds.phantom.empty() && ds.phantom != "study" && ds.phantom != "small")
-                c.fail(p + "/phantom", "unknown preset '" + ds.phantom + "'" + did_you_mean(ds.phantom, {"study", "small"}) +
-                                           "; presets: study, small");
-            if (!ds.file.empty() && !std::filesystem::exists(ds.file)) c.fail(p + "/file", "no such file: " + ds.file);
-            if (!ds.mesh.empty() && !std::filesystem::exists(ds.mesh)) c.fail(p + "/mesh", "no such file: " + ds.mesh);
-            if (ds.label.empty())
-                ds.label = ds.phantom.empty() ? std::filesystem::path(ds.file).stem().string() : ds.phantom;
-            e.data.push_back(ds);
-        }
-    }
+    if (j.contains("data")) e.data = parse_data(c, j["data"], origin);
     return e;
 }
 
