@@ -72,10 +72,14 @@ float vao_sample_offset(int k) {
     return fract(0.5 + float(k) * 0.618034);
 }
 
-// A ray from grid point pg along unit d, in the density texture's coordinates: a sample s voxels
-// along it is at start + dir s. own: the squared distance from the own line's axis (through qg
-// along t) as a quadratic in s, (a, b, c) -> a + s (b + s c), premultiplied by -falloff log2(e)
-// so that the own share is exp2 of it (the two dot products per sample taken out of the loop).
+// The largest tilt of a section ray along its line, in lengths along the line per length in the
+// section (see vao_open).
+const float kVaoTilt = 0.5;
+
+// A ray from grid point pg along d (not necessarily unit), in the density texture's coordinates:
+// a sample s voxels along it is at start + dir s. own: the squared distance from the own line's
+// axis (through qg along unit t) as a quadratic in s, (a, b, c) -> a + s (b + s c), times the
+// falloff (the dot products per sample taken out of the loop).
 struct VaoRay {
     vec3 start;
     vec3 dir;
@@ -87,21 +91,25 @@ VaoRay vao_ray(vec3 pg, vec3 d, vec3 qg, vec3 t) {
     VaoRay r;
     r.start = line_density_texcoord(pg);
     r.dir = d / vec3(density_dims.xyz);
-    r.own = -kVaoOwnFalloff * 1.442695 * vec3(dot(e, e) - et * et, 2.0 * (dot(e, d) - et * dt), 1.0 - dt * dt);
+    r.own = kVaoOwnFalloff * vec3(dot(e, e) - et * et, 2.0 * (dot(e, d) - et * dt), dot(d, d) - dt * dt);
     return r;
 }
 
 // The transmission of a ray, VAO_STEPS steps of ds voxels sampled at `offset` within each, `rate`
 // crossings per unit of the texture's density per step; after each step into trans[i].
-// own_reach: how far along the ray (voxels) the own tube's share can matter (a section ray moves
-// away from the axis at least as fast as it advances: beyond 3 voxels the share is below exp(-10)).
-void vao_march(VaoRay ray, float ds, float offset, float rate, float own_reach, out float trans[VAO_STEPS]) {
+// The own share exp(-x), x = falloff d^2, is taken as (1 - x / 8)^8, which is zero from x = 8
+// (exp(-8) = 3e-4): a few multiplies a sample and no branch. Skipping it beyond the first
+// voxels by a branch cost every sample the exp on llvmpipe (masked execution).
+void vao_march(VaoRay ray, float ds, float offset, float rate, out float trans[VAO_STEPS]) {
     const float own_peak = kVaoOwnPeak / kLineDensityUnit;
     float transmit = 1.0;
     for (int i = 0; i < VAO_STEPS; ++i) {
         float s = (float(i) + offset) * ds;
         float lambda = line_density_raw(ray.start + ray.dir * s);
-        if (s < own_reach) lambda -= own_peak * exp2(min(ray.own.x + s * (ray.own.y + s * ray.own.z), 0.0));
+        float own = max(1.0 - 0.125 * (ray.own.x + s * (ray.own.y + s * ray.own.z)), 0.0);
+        own *= own;
+        own *= own;
+        lambda -= own_peak * own * own;
         transmit *= 1.0 - min(1.0, rate * max(lambda, 0.0));
         trans[i] = transmit;
     }
@@ -125,7 +133,13 @@ float vao_open(vec3 pg, vec3 n, vec3 qg, vec3 t, vec3 tx, float ds, float r_h) {
         // the rays crowd where the weight is (they were spread evenly in phi, weighted by cos).
         float sin_phi = 2.0 * (float(k) + 0.5) / float(VAO_DIRECTIONS) - 1.0;
         vec3 d = sqrt(1.0 - sin_phi * sin_phi) * n + sin_phi * b;
-        vao_march(vao_ray(pg, d, qg, t), ds, vao_sample_offset(k), rate, 3.0, trans);
+        // Tilted along the line, by -kVaoTilt .. kVaoTilt per section length (s stays the
+        // distance in the section). In a bundle of parallel lines the samples read the same; but
+        // where a neighbour ends (a pathlet's head or tail moving by) the directions meet its end
+        // at different distances along the line, so the AO ramps over frames as the ray-traced
+        // AO does, where the section alone switched within a voxel (flicker).
+        float tilt = kVaoTilt * ((mod(float(k) * 7.0, float(VAO_DIRECTIONS)) + 0.5) * (2.0 / float(VAO_DIRECTIONS)) - 1.0);
+        vao_march(vao_ray(pg, d + tilt * t, qg, t), ds, vao_sample_offset(k), rate, trans);
         float before = 1.0;
         for (int i = 0; i < VAO_STEPS; ++i) {
             open += reach[i] * 0.5 * (before + trans[i]);  // the step's mean transmission
@@ -140,8 +154,7 @@ float vao_open(vec3 pg, vec3 n, vec3 qg, vec3 t, vec3 tx, float ds, float r_h) {
         float rr = sqrt((float(k) + 0.5) / float(VAO_DIRECTIONS));
         float phi = float(k) * 2.3999632;
         vec3 d = rr * cos(phi) * tx + rr * sin(phi) * b + sqrt(1.0 - rr * rr) * n;
-        // A hemisphere ray may run along its own line: its share is taken out all the way.
-        vao_march(vao_ray(pg, d, qg, t), ds, vao_sample_offset(k), rate, 1e30, trans);
+        vao_march(vao_ray(pg, d, qg, t), ds, vao_sample_offset(k), rate, trans);
         open += trans[VAO_STEPS - 1];
     }
     return open / float(VAO_DIRECTIONS);
