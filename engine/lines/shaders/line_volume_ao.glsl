@@ -66,12 +66,12 @@ float vao_own(vec3 x, vec3 qg, vec3 t) {
 }
 
 // Where a ray's samples lie within their steps, per direction: a golden-ratio sequence over the
-// middle half of the step, so that neighbouring directions sample at different distances.
+// middle 70 % of the step, so that neighbouring directions sample at different distances.
 // Midpoints on every ray put all samples on rings around the point, and a line crossing a ring
 // changed every direction at once (flicker); offsets near 0 sampled the point itself, where the
 // own tube's subtraction is least exact (an isolated line darkened by 5 % at the phantom's voxel).
 float vao_sample_offset(int k) {
-    return 0.25 + 0.5 * fract(0.5 + float(k) * 0.618034);
+    return 0.15 + 0.7 * fract(0.5 + float(k) * 0.618034);
 }
 
 // The largest tilt of a section ray along its line, in lengths along the line per length in the
