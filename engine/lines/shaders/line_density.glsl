@@ -39,10 +39,22 @@ uint line_density_index(ivec3 c) {
 // normalised uint (one hardware trilinear fetch costs llvmpipe a third of eight buffer loads).
 uniform sampler3D u_density_cells;
 
+// The texture's value times this is pathlet length per voxel, in voxel lengths.
+const float kLineDensityUnit = 4294967295.0 / LINE_DENSITY_SCALE;
+
+// Texture coordinates of grid point g, and the texture's value there in units of
+// kLineDensityUnit (a ray marcher steps in these coordinates and folds the unit into its rates).
+vec3 line_density_texcoord(vec3 g) {
+    return (g + 0.5) / vec3(density_dims.xyz);
+}
+float line_density_raw(vec3 texcoord) {
+    return textureLod(u_density_cells, texcoord, 0.0).r;
+}
+
 // Pathlet length per voxel near grid point g (trilinear), in voxel lengths; beyond the grid the
 // border voxels, which are empty (a margin of two voxels).
 float line_density_at(vec3 g) {
-    return textureLod(u_density_cells, (g + 0.5) / vec3(density_dims.xyz), 0.0).r * (4294967295.0 / LINE_DENSITY_SCALE);
+    return line_density_raw(line_density_texcoord(g)) * kLineDensityUnit;
 }
 #endif
 

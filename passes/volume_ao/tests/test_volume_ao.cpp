@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,11 +33,12 @@ const std::string kProbe = "passes/volume_ao/tests/graphs/vao_probe.json";
 
 // Straight lines along x (times 0..10 s unless given), 81 points each. The scenes keep z their
 // thinnest extent, so the framing camera looks along +z (smaller z is nearer) and sees them all.
+constexpr float kLength = 12.0f;
 struct Line {
     glm::vec3 at;  // y, z of the line; x runs over [0, length]
     float t0 = 0.0f, t1 = 10.0f;
+    float length = kLength;
 };
-constexpr float kLength = 12.0f;
 Scene straight_lines(const std::vector<Line>& lines) {
     Scene s;
     s.source = "vao-test";
@@ -44,7 +46,7 @@ Scene straight_lines(const std::vector<Line>& lines) {
         LineRange r{uint32_t(s.lines.position.size()), 81};
         for (int k = 0; k <= 80; ++k) {
             const float u = float(k) / 80.0f;
-            s.lines.position.push_back(glm::vec3(kLength * u, l.at.y, l.at.z));
+            s.lines.position.push_back(glm::vec3(l.length * u, l.at.y, l.at.z));
             s.lines.time.push_back(l.t0 + (l.t1 - l.t0) * u);
             s.lines.velocity.push_back({1.0f, 0.0f, 0.0f});
         }
@@ -249,6 +251,53 @@ TEST(VolumeAo, FollowsTheTimeWindow) {
     std::printf("half in the window: %.3f and %.3f\n", lo, hi);
     EXPECT_LT(lo, in + 0.05) << "where the neighbours are in the window";
     EXPECT_GT(hi, 0.97) << "where they are not";
+}
+
+// Where a neighbour ends (a pathlet's head, which moves on every frame), the AO ramps along
+// the line as the ray-traced AO does, over a distance like the neighbour's: the section rays
+// are tilted along the line. Rays in the section alone switched within a voxel or two, and a
+// head moving by flickered. The ramp's width: the rows of line 0 (they run up the image)
+// between 20 % and 80 % of the way from the occluded to the open AO.
+TEST(VolumeAo, RampsWhereANeighbourEndsAsTheRayTracedAoDoes) {
+    // Neighbours along the first half of line 0 (a pathlet's head stops there as a line's end does).
+    const Scene scene = straight_lines({{{0, 0, 0}}, {{0, 0.5f, -0.45f}, 0.0f, 10.0f, kLength / 2}, {{0, -0.5f, -0.45f}, 0.0f, 10.0f, kLength / 2}});
+    const Frame f = render(scene);
+    const std::vector<double> ref = rt_ao_per_pixel(f, scene, 0, 1024);
+    // Line 0's mean per row, the rows of its whole length (they run up the image).
+    auto profile = [&](bool traced) {
+        std::vector<double> row;
+        for (int y = 0; y < kSize.y; ++y) {
+            double sum = 0;
+            int n = 0;
+            for (int x = 0; x < kSize.x; ++x) {
+                const size_t i = size_t(y) * size_t(kSize.x) + size_t(x);
+                if (int(f["line_id"].at(x, y, 0)) != 0 || ref[i] < 0) continue;
+                sum += traced ? ref[i] : double(f["ao"].at(x, y, 0));
+                ++n;
+            }
+            if (n >= 2) row.push_back(sum / n);
+        }
+        return row;
+    };
+    // Rows between 10 % and 90 % of the way from the occluded end's level to the open end's.
+    auto ramp_rows = [](const std::vector<double>& row) {
+        const size_t ends = 20;
+        EXPECT_GT(row.size(), 4 * ends) << "line 0 hardly visible";
+        if (row.size() <= 4 * ends) return 0;
+        double a = 0, b = 0;
+        for (size_t i = 0; i < ends; ++i) a += row[i] / ends, b += row[row.size() - 1 - i] / ends;
+        EXPECT_GT(std::fabs(a - b), 0.1) << "the neighbours must occlude, or the ramp says nothing";
+        int inside = 0;
+        for (double v : row) {
+            const double u = (v - std::min(a, b)) / std::fabs(a - b);
+            inside += u > 0.1 && u < 0.9;
+        }
+        return inside;
+    };
+    const int rows = ramp_rows(profile(false)), rows_traced = ramp_rows(profile(true));
+    std::printf("ramp where the neighbours end: %d rows, ray-traced %d rows\n", rows, rows_traced);
+    EXPECT_GE(rows, rows_traced / 2) << "the AO switches where the neighbours end";
+    EXPECT_LE(rows, 2 * rows_traced);
 }
 
 // The same frame twice: the same AO, bit for bit (integer splat, fixed directions).
