@@ -7,7 +7,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FILTER=${1:-*}
-export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe MESA_SHADER_CACHE_DISABLE=true PATHLET_PLUGIN_PATH= \
+# A shader cache of this run only (as ctest's, tests/PathletTest.cmake): LLVM compiles a shader once.
+MESA_SHADER_CACHE_DIR=$(mktemp -d /tmp/pathlet_goldens_mesa.XXXXXX)
+trap 'rm -rf "$MESA_SHADER_CACHE_DIR"' EXIT
+export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR PATHLET_PLUGIN_PATH= \
   PATHLET_UPDATE_GOLDENS=1 PATHLET_REAL_DATA_DIR="${PATHLET_REAL_DATA_DIR:-$PWD/../shared/data/real}"
 for t in build/bin/test_*; do
   "$t" --gtest_filter="$FILTER" --gtest_brief=1 >/dev/null 2>&1 || true

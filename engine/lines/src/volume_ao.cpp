@@ -26,7 +26,7 @@ PassTypeBuilder& declare_volume_ao_params(PassTypeBuilder& b) {
                     "AO, 0.067 over the hemisphere); hemisphere = a cosine-weighted set over the whole hemisphere, "
                     "no assumption")
         .param_int("directions", 12, 1, 64, "ray directions per point (12 section rays: the ray-traced AO within MAE 0.05 at 1280x720)")
-        .param_int("steps", 7, 1, 64, "density samples per ray")
+        .param_int("steps", 8, 1, 64, "density samples per ray")
         .param_enum("density_copy", "auto", {"auto", "compute", "upload"},
                     "how the density cells become the 3D texture every frame: compute = a dispatch on the GPU; "
                     "upload = a pixel-buffer upload, which a GPU driver may convert on the CPU after waiting for the "
