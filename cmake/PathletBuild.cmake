@@ -6,6 +6,11 @@
 #               and the settings precompiled headers need. So scripts/main.sh's objects serve
 #               scripts/test.sh and the lean bundle's build (another tree of the same sources).
 #   -O2         the Release level: -O3 took longer to compile and no frame faster.
+#   -Og tests   a test's own code (set-up and checks) compiles at -Og in Release; what it tests
+#               (libpathlet, the plugins, the command) is the release build. Half the compile time
+#               of -O2 per test, and the suites take no longer (docs/testing.md).
+#   gold        executables and libraries link with gold where the compiler finds it (binutils):
+#               a tenth of ld.bfd's time for a test executable, and there are a hundred of them.
 #   unity       multi-file targets compile in batches (pathlet_unity_build): the headers every
 #               file includes (nlohmann/json, GLM, the standard library, the SDK) are parsed and
 #               their templates compiled once a batch instead of once a file.
@@ -18,6 +23,8 @@ option(PATHLET_UNITY "Compile multi-file targets in batches (unity build); OFF: 
 set(PATHLET_UNITY_BATCH 16 CACHE STRING "Source files per unity batch")
 option(PATHLET_PCH "Precompile the headers every pass and every test parses" ON)
 option(PATHLET_UNIT_TIMES "Log each compile's CPU time in BUILD/unit-times.tsv" ON)
+set(PATHLET_TEST_OPTIMIZE "-Og" CACHE STRING "Optimisation of the tests' own code in Release (empty: the build type's)")
+option(PATHLET_GOLD "Link with gold when the compiler can" ON)
 
 # A launcher the user chose (other than plain ccache) is kept as it is.
 find_program(PATHLET_CCACHE_PROGRAM ccache)
@@ -38,6 +45,14 @@ endif()
 foreach(lang C CXX)
   string(REPLACE "-O3" "-O2" CMAKE_${lang}_FLAGS_RELEASE "${CMAKE_${lang}_FLAGS_RELEASE}")
 endforeach()
+
+if(PATHLET_GOLD)
+  include(CheckLinkerFlag)
+  check_linker_flag(CXX -fuse-ld=gold PATHLET_HAS_GOLD)
+  if(PATHLET_HAS_GOLD)
+    add_link_options(-fuse-ld=gold)
+  endif()
+endif()
 
 if(PATHLET_UNIT_TIMES AND CMAKE_GENERATOR MATCHES "Makefiles|Ninja")
   set_property(GLOBAL PROPERTY RULE_LAUNCH_COMPILE
@@ -97,4 +112,14 @@ function(pathlet_share_pch holder)
     set_target_properties(${t} PROPERTIES DEFINE_SYMBOL "")
     target_precompile_headers(${t} REUSE_FROM ${holder})
   endforeach()
+endfunction()
+
+# pathlet_test_optimize(TARGET...): the TARGETS' own code (a test's set-up and checks, not the
+# engine it links) at PATHLET_TEST_OPTIMIZE in Release, after the build type's -O2 so it wins.
+function(pathlet_test_optimize)
+  if(PATHLET_TEST_OPTIMIZE)
+    foreach(t ${ARGN})
+      target_compile_options(${t} PRIVATE $<$<CONFIG:Release>:${PATHLET_TEST_OPTIMIZE}>)
+    endforeach()
+  endif()
 endfunction()
