@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pathlet {
@@ -35,9 +36,16 @@ public:
     const GraphFile& graph() const { return graph_; }
     const CompiledGraph& compiled() const { return compiled_; }
     const RenderOptions& options() const { return opt_; }
-    // What a run sets once the inputs are known (the time range, the callbacks, stop): the size,
-    // the graph and its --set are the compiled graph's and stay as the constructor took them.
-    RenderOptions& options() { return opt_; }
+    // What a run may set once the inputs are known: the time range, and the caller's view of the
+    // frames (RenderOptions' on_image, on_frames, stop). The size, the graph and its --set are
+    // the compiled graph's and stay as the constructor took them, so no setter changes them.
+    void set_time(const TimeRange& time) { opt_.time = time; }
+    void set_callbacks(decltype(RenderOptions::on_image) on_image, decltype(RenderOptions::on_frames) on_frames,
+                       decltype(RenderOptions::stop) stop) {
+        opt_.on_image = std::move(on_image);
+        opt_.on_frames = std::move(on_frames);
+        opt_.stop = std::move(stop);
+    }
     // One more resource read back every frame (before run()); std::invalid_argument, naming the
     // graph's resources, where it has none of that name.
     void read_back(ReadBack rb);

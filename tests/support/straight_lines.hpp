@@ -14,7 +14,7 @@ struct StraightLine {
     glm::vec3 from{0.0f}, to{1.0f, 0.0f, 0.0f};
     float speed = 1.0f;
     int points = 101;
-    std::vector<float> arrays;  // one value per array name of straight_lines_scene, constant along the line
+    std::vector<float> arrays{};  // one value per array name of straight_lines_scene, constant along the line
 };
 
 // Units mm, s, mm/s. `array_names` name the values of StraightLine::arrays.

@@ -71,23 +71,23 @@ struct Extras {
 // Renders the job's frames over `scene` with progress, writes the video and the report, prints
 // the timing table; 128 + the signal when interrupted.
 int render_and_report(RenderJob& job, Runtime& rt, const Scene& scene, const Extras& x) {
-    RenderOptions& run = job.options();
-    const RenderOptions& opt = run;
+    const RenderOptions& opt = job.options();
     std::unique_ptr<VideoWriter> video;
+    std::function<void(const Image&)> on_image;
     if (!x.video_path.empty()) {
         ensure_parent_dir(x.video_path);
         video = std::make_unique<VideoWriter>(x.video_path, opt.size.x, opt.size.y, x.fps);
-        run.on_image = [&](const Image& img) { video->add_frame(img); };  // a writer thread, in order
+        on_image = [&](const Image& img) { video->add_frame(img); };  // a writer thread, in order
     }
     std::unique_ptr<Progress> progress;
-    run.on_frames = [&](size_t rendered, size_t written, size_t total) {
+    auto on_frames = [&](size_t rendered, size_t written, size_t total) {
         if (!progress) progress = std::make_unique<Progress>("frames", total, opt.quiet);
         // Rendered frames lead; written ones follow as the encoders catch up.
         const bool writes = opt.write_images || video;
         progress->update(rendered, writes ? std::to_string(written) + " written" : "");
     };
     StopOnSignals signals;
-    run.stop = [&] { return signals.signal() != 0; };
+    job.set_callbacks(on_image, on_frames, [&] { return signals.signal() != 0; });
     RenderResult r = job.run(scene);
     if (const int sig = signals.signal()) {
         video.reset();  // stops ffmpeg, removes its temp file
@@ -207,7 +207,7 @@ int run(const std::vector<std::string>& argv) {
     if (!report.empty()) check_output_file(report + ".csv", "the timing report (--report)", false);
     if (!video_path.empty()) check_output_file(video_path, "the video (--video)", false);
     Scene scene = data.load(opt.quiet);
-    job->options().time = time ? *time : default_time_range(scene);
+    job->set_time(time ? *time : default_time_range(scene));
     if (time) check_time_in_data(*time, shown(*time), scene, allow_empty);
     if (!opt.quiet) note_shared_folders(folders, opt.graph_path);
     try {

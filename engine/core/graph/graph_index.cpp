@@ -92,6 +92,64 @@ std::string untrusted_hint(const std::vector<GraphFile::UntrustedDir>& dirs) {
     return s + " trusts it (--trust-graph-plugins: for one run)";
 }
 
+// Pass i's bindings: each bound pin checked against its type's declaration and resolved to a
+// resource, then its unbound outputs' implicit resources.
+static void bind_pins(GraphIndex& idx, size_t i, std::vector<Diagnostic>& diags) {
+    const GraphFile& g = *idx.g;
+    auto error = [&](const std::string& ptr, const std::string& msg) { diags.push_back({g.path, ptr, msg}); };
+    const PassDecl& p = g.passes[i];
+    const PassTypeInfo* t = idx.types[i];
+    if (!t) return;  // unknown type: reported with its "type"
+    auto pins_of = [&](PinDir dir) {
+        std::vector<std::string> v;
+        for (const auto& pin : t->pins)
+            if (pin.dir == dir && !pin.internal) v.push_back(pin.name);
+        return v;
+    };
+    for (const bool input : {true, false}) {
+        const PinDir dir = input ? PinDir::Input : PinDir::Output;
+        const char* key = input ? "inputs" : "outputs";
+        for (const auto& [pin, ref] : input ? p.inputs : p.outputs) {
+            BoundPin b;
+            b.pin = pin;
+            b.pointer = p.pointer + "/" + key + "/" + pointer_escape(pin);
+            const PinDecl* pd = t->pin(pin);
+            if (pd && pd->internal) {
+                error(b.pointer, "'" + pin + "' is " + t->type + "'s internal " + std::string(pd->kind == PinKind::Texture ? "texture" : "buffer") + " (the pass's own, allocated by "
+                                 "the engine): graphs do not bind it; remove this binding");
+                pd = nullptr;
+            } else if (!pd || pd->dir != dir) {
+                std::string msg = "pass type '" + t->type + "' has no " + (input ? "input" : "output") + " pin '" + pin + "'";
+                if (pd) msg += "; '" + pin + "' is an " + (input ? "output: bind it under \"outputs\"" : "input: bind it under \"inputs\"");
+                else msg += did_you_mean(pin, pins_of(dir));
+                auto names = pins_of(dir);
+                msg += std::string("; its ") + key + ": " + (names.empty() ? std::string("none") : join(names));
+                error(b.pointer, msg);
+            } else {
+                b.decl = pd;
+            }
+            std::string err;
+            if (input) {
+                Ref r = split_ref(ref);
+                b.prev = r.prev;
+                b.resource = idx.resolve(r.name, err);
+            } else if ((b.resource = idx.find_resource(ref)) < 0) {
+                err = "unknown resource '" + ref + "'" + did_you_mean(ref, idx.resource_names()) +
+                      "; declare it under /resources, or leave the pin unbound to get '" + p.name + "." + pin + "'";
+            }
+            if (!err.empty()) error(b.pointer, err);
+            (input ? idx.inputs : idx.outputs)[i].push_back(b);
+        }
+    }
+    for (const auto& pin : t->pins) {
+        if (pin.dir != PinDir::Output || p.outputs.count(pin.name) || pin.optional) continue;
+        int r = idx.find_resource(p.name + "." + pin.name);
+        // A duplicate pass name shares the first pass's implicit names: reported, not bound twice.
+        if (r >= 0 && idx.resources[r].implicit && idx.resources[r].pointer == p.pointer)
+            idx.outputs[i].push_back({pin.name, &pin, r, false, p.pointer});
+    }
+}
+
 GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<Diagnostic>& diags) {
     GraphIndex idx;
     idx.g = &g;
@@ -133,59 +191,7 @@ GraphIndex build_index(const GraphFile& g, const PassRegistry& reg, std::vector<
 
     idx.inputs.resize(g.passes.size());
     idx.outputs.resize(g.passes.size());
-    for (size_t i = 0; i < g.passes.size(); ++i) {
-        const PassDecl& p = g.passes[i];
-        const PassTypeInfo* t = idx.types[i];
-        if (!t) continue;
-        auto pins_of = [&](PinDir dir) {
-            std::vector<std::string> v;
-            for (const auto& pin : t->pins)
-                if (pin.dir == dir && !pin.internal) v.push_back(pin.name);
-            return v;
-        };
-        for (const bool input : {true, false}) {
-            const PinDir dir = input ? PinDir::Input : PinDir::Output;
-            const char* key = input ? "inputs" : "outputs";
-            for (const auto& [pin, ref] : input ? p.inputs : p.outputs) {
-                BoundPin b;
-                b.pin = pin;
-                b.pointer = p.pointer + "/" + key + "/" + pointer_escape(pin);
-                const PinDecl* pd = t->pin(pin);
-                if (pd && pd->internal) {
-                    error(b.pointer, "'" + pin + "' is " + t->type + "'s internal " + std::string(pd->kind == PinKind::Texture ? "texture" : "buffer") + " (the pass's own, allocated by "
-                                     "the engine): graphs do not bind it; remove this binding");
-                    pd = nullptr;
-                } else if (!pd || pd->dir != dir) {
-                    std::string msg = "pass type '" + t->type + "' has no " + (input ? "input" : "output") + " pin '" + pin + "'";
-                    if (pd) msg += "; '" + pin + "' is an " + (input ? "output: bind it under \"outputs\"" : "input: bind it under \"inputs\"");
-                    else msg += did_you_mean(pin, pins_of(dir));
-                    auto names = pins_of(dir);
-                    msg += std::string("; its ") + key + ": " + (names.empty() ? std::string("none") : join(names));
-                    error(b.pointer, msg);
-                } else {
-                    b.decl = pd;
-                }
-                std::string err;
-                if (input) {
-                    Ref r = split_ref(ref);
-                    b.prev = r.prev;
-                    b.resource = idx.resolve(r.name, err);
-                } else if ((b.resource = idx.find_resource(ref)) < 0) {
-                    err = "unknown resource '" + ref + "'" + did_you_mean(ref, idx.resource_names()) +
-                          "; declare it under /resources, or leave the pin unbound to get '" + p.name + "." + pin + "'";
-                }
-                if (!err.empty()) error(b.pointer, err);
-                (input ? idx.inputs : idx.outputs)[i].push_back(b);
-            }
-        }
-        for (const auto& pin : t->pins) {
-            if (pin.dir != PinDir::Output || p.outputs.count(pin.name) || pin.optional) continue;
-            int r = idx.find_resource(p.name + "." + pin.name);
-            // A duplicate pass name shares the first pass's implicit names: reported, not bound twice.
-            if (r >= 0 && idx.resources[r].implicit && idx.resources[r].pointer == p.pointer)
-                idx.outputs[i].push_back({pin.name, &pin, r, false, p.pointer});
-        }
-    }
+    for (size_t i = 0; i < g.passes.size(); ++i) bind_pins(idx, i, diags);
 
     // Writers, once every vector above has its final size (the BoundPin pointers stay valid).
     idx.writers.resize(idx.resources.size());

@@ -157,7 +157,7 @@ TEST(ExactReference, FragmentsAtOneDepthAreOneLayerWhateverTheirLinesInBoth) {
     for (int r = 0; r < lone.height; ++r)
         if (lone.at(x, r, 1) + lone.at(x, r, 0) < lone.at(x, y, 1) + lone.at(x, y, 0)) y = r;
     auto centre = [&](const std::string& g, const std::vector<StraightLine>& lines) {
-        const Image& im = render(g, straight_lines_scene(lines), {160, 90}, 5.0, sets, cam)["final"];
+        const Image im = render(g, straight_lines_scene(lines), {160, 90}, 5.0, sets, cam)["final"];
         return glm::vec3(im.at(x, y, 0), im.at(x, y, 1), im.at(x, y, 2));
     };
     const float a = 128.0f / 255.0f;  // 0.5 as the lists' 8 bits
