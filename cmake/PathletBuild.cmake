@@ -9,7 +9,7 @@
 #   -Og tests   a test's own code (set-up and checks) compiles at -Og in Release; what it tests
 #               (libpathlet, the plugins, the command) is the release build. Half the compile time
 #               of -O2 per test, and the suites take no longer (docs/testing.md).
-#   gold        executables and libraries link with gold where the compiler finds it (binutils):
+#   gold        GCC's executables and libraries link with gold where it is found (binutils):
 #               a tenth of ld.bfd's time for a test executable, and there are a hundred of them.
 #   unity       multi-file targets compile in batches (pathlet_unity_build): the headers every
 #               file includes (nlohmann/json, GLM, the standard library, the SDK) are parsed and
@@ -46,7 +46,8 @@ foreach(lang C CXX)
   string(REPLACE "-O3" "-O2" CMAKE_${lang}_FLAGS_RELEASE "${CMAKE_${lang}_FLAGS_RELEASE}")
 endforeach()
 
-if(PATHLET_GOLD)
+# GCC only: clang's sanitizer runtimes make gold warn about every symbol they export.
+if(PATHLET_GOLD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   include(CheckLinkerFlag)
   check_linker_flag(CXX -fuse-ld=gold PATHLET_HAS_GOLD)
   if(PATHLET_HAS_GOLD)
@@ -119,7 +120,7 @@ endfunction()
 function(pathlet_test_optimize)
   if(PATHLET_TEST_OPTIMIZE)
     foreach(t ${ARGN})
-      target_compile_options(${t} PRIVATE $<$<CONFIG:Release>:${PATHLET_TEST_OPTIMIZE}>)
+      target_compile_options(${t} PRIVATE "$<$<CONFIG:Release>:${PATHLET_TEST_OPTIMIZE}>")  # may be a list
     endforeach()
   endif()
 endfunction()

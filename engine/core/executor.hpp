@@ -27,7 +27,7 @@ class AsyncOutput;
 class GlContext;
 class Profiler;
 
-class Executor : private PassHost {
+class Executor final : private PassHost {
 public:
     // `cg`, `scene` and `gl` must outlive the executor. `profiler` may be null.
     Executor(GlContext& gl, const CompiledGraph& cg, const GpuScene& scene, Profiler* profiler = nullptr);

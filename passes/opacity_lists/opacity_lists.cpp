@@ -101,8 +101,9 @@ public:
     void setup(pathlet::PassContext& ctx) override {
         const pathlet::Params& p = ctx.params();
         const auto importance = p.e<Importance>("importance");
-        std::vector<std::string> defines;  // the pins' bindings come from the engine (LISTS_BINDING, ...)
-        if (importance == Importance::hook) defines.push_back("OO_IMPORTANCE_HOOK");
+        // The pins' bindings come from the engine (LISTS_BINDING, ...).
+        const std::vector<std::string> defines =
+            importance == Importance::hook ? std::vector<std::string>{"OO_IMPORTANCE_HOOK"} : std::vector<std::string>{};
         prog_ = &lines::program(ctx, {"opacity_lists.frag"}, lines::hooks(ctx), defines);
         drawer_.set_depth_func(GL_ALWAYS);  // every fragment, as OIT keeps them
 

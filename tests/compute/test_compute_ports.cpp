@@ -371,9 +371,10 @@ TEST(compute_ports, OutputsHaveImageFormats) {
         if (!t->param("impl")) continue;
         ++ports;
         for (const PinDecl& p : t->pins)
-            if (p.dir == PinDir::Output && p.kind == PinKind::Texture)
+            if (p.dir == PinDir::Output && p.kind == PinKind::Texture) {
                 EXPECT_TRUE(image_formats.count(p.format)) << t->type << "." << p.name << " is " << p.format
                                                            << ", which image load/store cannot write";
+            }
     }
     EXPECT_GE(ports, 6) << "gauss_pyramid, lineao, bilateral, edge_aa, volume_ao and temporal_ao have compute versions";
 }

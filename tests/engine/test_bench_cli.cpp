@@ -394,8 +394,9 @@ TEST(BenchCli, WithoutATimeBenchAndQualityPickOneInsideTheDataAndSayWhich) {
                                  (d / "refused").string());
     EXPECT_EQ(refused.code, 2) << refused.err;
     EXPECT_NE(refused.err.find("the data's time span, 0..4 s"), std::string::npos) << refused.err;
-    if (fs::exists(d / "refused.json"))  // the report is written before the data is loaded: no run in it
+    if (fs::exists(d / "refused.json")) {  // the report is written before the data is loaded: no run in it
         EXPECT_TRUE(json::parse(slurp(d / "refused.json"))["runs"].empty());
+    }
     // ... or, asked for, timed as it is: warned about, and it draws nothing.
     CliRun late = pathlet_cli("bench isl --phantom small --size 64x36 --frames 1 --warmup 0 --quiet --time 9 "
                               "--allow-empty-frames --report " + (d / "late").string());

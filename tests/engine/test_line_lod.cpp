@@ -133,7 +133,7 @@ TEST(LineLod, EveryDroppedPointIsWithinTheToleranceOfItsSegmentAtItsTime) {
             }
             k += size_t(st.count[li]);
         }
-        if (eps >= 0.05f) EXPECT_LT(st.segments, 20u * 299u / 2) << "eps " << eps << " simplifies little";
+        if (eps >= 0.05f) { EXPECT_LT(st.segments, 20u * 299u / 2) << "eps " << eps << " simplifies little"; }
     }
 }
 

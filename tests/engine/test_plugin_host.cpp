@@ -44,8 +44,6 @@ struct PluginHostTest : ::testing::Test {
     }
 };
 
-}  // namespace
-
 TEST_F(PluginHostTest, GoodPluginRegistersItsTypes) {
     host.load_file(fixture("good_pass"));
     ASSERT_NE(reg.find("fixture_throw"), nullptr);
@@ -107,8 +105,6 @@ TEST(PluginSearchPath, EnvironmentAndExtraDirsComeFirst) {
 
 // ---- checks before a file is opened --------------------------------------------
 
-namespace {
-
 // A fresh folder for one test, and a marker file the fixtures' constructors write when (and
 // only when) a library is loaded.
 struct LoadScratch : ::testing::Test {
@@ -140,8 +136,6 @@ std::string joined(const std::vector<std::string>& v) {
     for (const auto& x : v) s += x + "\n";
     return s;
 }
-
-}  // namespace
 
 TEST_F(LoadScratch, TheMarkerFixtureProvesALoadRunsConstructors) {
     // The check the other tests rely on: loading the marker plugin does write the file.
@@ -255,3 +249,5 @@ TEST(PluginElf, FuzzRegressionsAreRefusedNotCrashes) {
     }
     EXPECT_GE(n, 5u);
 }
+
+}  // namespace

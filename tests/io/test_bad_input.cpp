@@ -1,4 +1,4 @@
-// Bad input, one test per failure class from the issue: every problem is either repaired
+// Bad input, one test per failure class: every problem is either repaired
 // with a counted warning or rejected with a DataError "<file>: line N: ..." / "<file>:
 // byte N: ...". Bad files are made here by mutating good bytes. A global operator new
 // records the largest single allocation, so "no giant allocation" is checked, not assumed.
@@ -320,9 +320,7 @@ TEST_F(IoBadInput, UnsupportedThingsSayWhatToDo) {
     EXPECT_NE(m.find(": line 2: "), std::string::npos) << m;
 }
 
-}  // namespace
-
-// ---- defects an outside fuzzing run found (issue: hardening) ------------------------------
+// ---- defects an outside fuzzing run found -----------------------------------------------------
 
 TEST_F(IoBadInput, CellCountBeyondTheValuesIsRefusedBeforeAllocating) {
     // 4.2 layout: "LINES n size" with a huge n and a handful of values reserved n offsets.
@@ -382,13 +380,9 @@ TEST_F(IoBadInput, TheAllocationRecorderSeesAllocations) {
     EXPECT_EQ(big->size(), size_t(64) << 20);
 }
 
-namespace {
-
 void put_i32(std::string& b, size_t at, int32_t v) { std::memcpy(b.data() + at, &v, 4); }
 void put_i16(std::string& b, size_t at, int16_t v) { std::memcpy(b.data() + at, &v, 2); }
 void put_f32(std::string& b, size_t at, float v) { std::memcpy(b.data() + at, &v, 4); }
-
-}  // namespace
 
 TEST_F(IoBadInput, TrackVisHeadersAndTracks) {
     Pathlines p = iotest::make_lines(3, 5);
@@ -451,3 +445,5 @@ TEST_F(IoBadInput, MrtrixTckHeadersAndData) {
     while (endless.size() < (2u << 20)) endless += "key: value\n";
     expect_error(put("j.tck", endless), "no END line in the first 1 MiB");
 }
+
+}  // namespace

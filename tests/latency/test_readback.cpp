@@ -79,7 +79,7 @@ TEST(GpuReadback, EveryCopyReachesItsOwnerInOrderWithItsTagOnlyAfterTheLatencyAn
         const size_t before = seen.size();
         const size_t got = rb.poll(take);
         EXPECT_EQ(got, seen.size() - before);
-        if (got) EXPECT_EQ(gpu_frame() % uint64_t(k), 0u) << "results arrive in bursts, on multiples of K";
+        if (got) { EXPECT_EQ(gpu_frame() % uint64_t(k), 0u) << "results arrive in bursts, on multiples of K"; }
         if (gpu_frame() % uint64_t(k) == 0) {  // a burst: every copy at least K frames old, no other
             size_t due = 0;
             for (int i = 0; i < n; ++i) due += first + 1 + uint64_t(i) + uint64_t(k) <= gpu_frame();
@@ -202,7 +202,7 @@ TEST(ReadbackRing, PollTakesWhatIsReadyOnceTheLatencyHasPassed) {
         glFinish();
         const size_t before = done.size();
         ring.poll();
-        if (done.size() > before) EXPECT_EQ(gpu_frame() % uint64_t(k), 0u);
+        if (done.size() > before) { EXPECT_EQ(gpu_frame() % uint64_t(k), 0u); }
         EXPECT_LE(done.size(), size_t(f + 1 >= k ? f + 1 - k + 1 : 0)) << "frame " << f << ": a result came early";
     }
     ring.drain();

@@ -11,6 +11,14 @@ steps=$(grep -E '^[^#]*scripts/build\.sh' "$SRC/scripts/main.sh")
 [ "$(echo "$steps" | wc -l)" = 1 ] || { echo "FAIL: main.sh builds more than once: $steps"; exit 1; }
 step=$(echo "$steps" | sed -E 's/^[[:space:]]*//')
 case "$step" in scripts/build.sh*) ;; *) echo "FAIL: main.sh's build step is '$step'"; exit 1 ;; esac
+# The step rewrites BUILD/build.log: the log of the build that made this tree is put back after.
+saved=$(mktemp)
+if [ -f "$BUILD/build.log" ]; then
+  cp -p "$BUILD/build.log" "$saved"
+  trap 'mv "$saved" "$BUILD/build.log"' EXIT
+else
+  trap 'rm -f "$saved"' EXIT
+fi
 (cd "$SRC" && PATHLET_BUILD_DIR="$BUILD" PATHLET_CONFIGURE=0 bash -c "$step" >/dev/null)
 built=$(sed -n 's/.*Built target \([A-Za-z0-9_.+-]*\).*/\1/p' "$BUILD/build.log" | sort -u)
 echo "main.sh builds: $(echo $built)"

@@ -64,7 +64,7 @@ TEST(FileComplete, TheCheckReadsTheStructureNotThePixels) {
         for (size_t i = b.size() / 3; i < b.size() / 2; ++i) b[i] = char(i * 131);
         std::ofstream(p, std::ios::binary | std::ios::trunc) << b;
         EXPECT_TRUE(image_file_complete(p.string())) << ext;
-        if (ext == ".exr") EXPECT_ANY_THROW(read_image(p.string())) << "the garbage is not decodable: this proves no decode";
+        if (ext == ".exr") { EXPECT_ANY_THROW(read_image(p.string())) << "the garbage is not decodable: this proves no decode"; }
     }
 }
 

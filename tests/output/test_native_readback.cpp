@@ -26,12 +26,13 @@ Texture pattern_texture(GLenum format, int w, int h) {
     t.width = w, t.height = h, t.internal_format = format;
     glCreateTextures(GL_TEXTURE_2D, 1, &t.id);
     glTextureStorage2D(t.id, 1, format, w, h);
-    const size_t n = size_t(w) * size_t(h) * size_t(fi->channels);
     std::mt19937 rng(format);
     const PlainPixelStore unpack(PlainPixelStore::unpack);
     if (fi->pixel_type == GL_HALF_FLOAT) {
-        std::vector<uint16_t> v(n);
-        for (size_t i = 0; i < n; ++i) {
+        // Rows padded to the unpack alignment (4): GL reads every row at that stride.
+        const size_t row = size_t(w) * size_t(fi->channels) * 2;
+        std::vector<uint16_t> v((row + 3) / 4 * 4 / 2 * size_t(h));
+        for (size_t i = 0; i < v.size(); ++i) {
             uint16_t h16 = uint16_t(rng());
             if ((h16 & 0x7c00u) == 0x7c00u) h16 &= 0xfc00u;  // infinities stay, NaNs become infinities
             v[i] = i % 7 == 0 ? uint16_t(i % 0x400) : h16;    // every seventh a denormal (or zero)

@@ -123,7 +123,7 @@ void expect_complete_sequence(const fs::path& dir, long frames) {
     ASSERT_GE(frames, 3) << "the signal came after three frames were on disk";
     ASSERT_EQ(long(names.size()), frames) << "the files on disk are the frames the command says it wrote";
     for (size_t i = 0; i < names.size(); ++i) {
-        char expected[16];
+        char expected[32];
         std::snprintf(expected, sizeof expected, "%05zu.png", i);
         ASSERT_EQ(names[i], expected) << "only complete frames, in sequence (no temp, no gap)";
         const Image img = read_image((dir / names[i]).string());

@@ -68,7 +68,7 @@ void expect_scale_free(const ShippedGraph& g) {
         size_t drawn = 0;
         for (size_t i = 0; i + 2 < ref.pixels.size(); i += size_t(ref.channels))
             drawn += ref.pixels[i] + ref.pixels[i + 1] + ref.pixels[i + 2] < 2.9f;
-        if (g.draws_lines) EXPECT_GT(double(drawn), 0.01 * ref.width * ref.height) << name << " shows no data";
+        if (g.draws_lines) { EXPECT_GT(double(drawn), 0.01 * ref.width * ref.height) << name << " shows no data"; }
     }
     for (float k : {0.01f, 100.0f}) {
         const Frame f = render_frame(test_runtime(), scaled(small_phantom_scene(), k), opt, outputs);

@@ -44,7 +44,7 @@ public:
         std::string file;      // written there (temp name, then rename); "" = not written
         bool to_image = false; // handed to on_image
         // Handed this capture's image, on a writer in frame order (a caller reading a resource back).
-        std::function<void(const Image&)> sink;
+        std::function<void(const Image&)> sink{};
         // The box filter's factor: 0 = Options::ssaa (a render-size output); 1 keeps a texture of
         // another size as it is.
         int factor = 0;

@@ -13,10 +13,18 @@ namespace {
 struct Out {
     std::string s;
     bool binary;
-    void text(const char* fmt, auto... a) {
+    void text(const char* plain) { s += plain; }  // no arguments, so nothing to format
+    void text(const char* fmt, auto first, auto... rest) {
         char buf[256];
-        int n = std::snprintf(buf, sizeof buf, fmt, a...);
-        s.append(buf, size_t(n));
+        const int n = std::snprintf(buf, sizeof buf, fmt, first, rest...);
+        if (n < int(sizeof buf)) {
+            s.append(buf, size_t(n));
+            return;
+        }
+        std::string long_text(size_t(n) + 1, '\0');  // a long array name: formatted again, whole
+        std::snprintf(long_text.data(), long_text.size(), fmt, first, rest...);
+        long_text.pop_back();
+        s += long_text;
     }
     template <class T>
     void be(T v) {

@@ -68,7 +68,7 @@ struct Candidate {
     TracedLine line;
     float length = 0.0f;
     uint64_t steps = 0;
-    std::vector<uint8_t> near_before;  // per point: near a line accepted before this batch
+    std::vector<uint8_t> near_before{};  // per point: near a line accepted before this batch
 };
 
 void append_line(Pathlines& out, const TracedLine& l) {

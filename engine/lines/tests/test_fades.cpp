@@ -251,8 +251,9 @@ TEST(GeometricFade, Variant3GraphMatchesGoldenAndIsClean) {
     };
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x)
-            if (!line_at(x, y) && !line_at(x + 1, y) && !line_at(x - 1, y) && !line_at(x, y + 1) && !line_at(x, y - 1))
+            if (!line_at(x, y) && !line_at(x + 1, y) && !line_at(x - 1, y) && !line_at(x, y + 1) && !line_at(x, y - 1)) {
                 ASSERT_GT(img.at(x, y, 0), 0.99f) << x << "," << y;
+            }
     Frame again = render_frame(rt(), helix_bundle_scene(), opt, {"final"});
     EXPECT_EQ(again["final"].pixels, img.pixels) << "deterministic";
 }

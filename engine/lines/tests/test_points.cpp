@@ -95,7 +95,7 @@ TEST(points, MemoryReportedIsTheBuffersSizesAndAtMost32BytesAPointQuantised) {
         EXPECT_EQ(m.chunks, gpu.chunks().chunks().size());
         const GpuScene::PointMemory without_gl = GpuScene::point_memory(m.points, m.chunks, layout);
         EXPECT_EQ(without_gl.total(), m.total());
-        if (layout == GpuScene::PointLayout::quantised) EXPECT_LE(m.per_point(), 32.0);
+        if (layout == GpuScene::PointLayout::quantised) { EXPECT_LE(m.per_point(), 32.0); }
         std::printf("%s: %.2f bytes a point\n", GpuScene::layout_name(layout), m.per_point());
     }
 }

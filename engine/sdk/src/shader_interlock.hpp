@@ -16,7 +16,7 @@ struct ShaderUnit {
     std::vector<std::string> files;     // the stage's files, found
     std::vector<std::string> numbered;  // files by #line number (ShaderSource::compose)
     GLenum stage = 0;
-    std::string merge_note;             // appended to a compile error of a merged object
+    std::string merge_note{};           // appended to a compile error of a merged object
 };
 
 // NVIDIA (580, H200) links an interlocked fragment stage of several objects into code without
