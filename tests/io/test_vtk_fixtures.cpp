@@ -1,5 +1,5 @@
-// Hand-written fixtures in the exact shapes VTK 9.1 writes (see ecosystem-notes §4; the
-// python vtkmodules generator was not available on this machine): 5.1 OFFSETS layout with
+// Hand-written fixtures in the exact shapes VTK 9.1 writes (the python
+// vtkmodules generator was not available on this machine): 5.1 OFFSETS layout with
 // FIELD arrays and METADATA blocks, 4.2 with every skippable section, VTP inline base64
 // with an <InformationKey> child, and zlib with nBlocks = 0.
 #include "io/base64.hpp"

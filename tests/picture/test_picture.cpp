@@ -1,5 +1,5 @@
 // The study's picture on real GL (llvmpipe): edge_aa against a 4x4 supersampled render of the
-// same graph (the RMS and speckle figures, on tiny scenes), halos as a supersampled render
+// same graph (the RMS and speckle targets, on tiny scenes), halos as a supersampled render
 // draws them at every line width from 1 to 20 px, the overlay (golden, time label,
 // legend, a missing or bad font) and `render --ssaa` (size, box filter).
 #include "frame_capture.hpp"
@@ -100,7 +100,7 @@ Image render_image(const Scene& scene, const std::string& graph, std::vector<std
 
 }  // namespace
 
-// The measurement on tiny scenes: the frame against the same graph rendered 4x4 larger
+// The edge targets' measurement on tiny scenes: the frame against the same graph rendered 4x4 larger
 // (LineAO radii and filter widths scaled) and box-filtered, whose 16 samples are the ground
 // truth. Hard edges are today's picture; edge_aa must get much closer, without speckles.
 TEST(EdgeAA, SlantedLinesAreCloserToTheSupersampledFrame) {

@@ -1,4 +1,4 @@
-// Golden-image comparison for GoogleTest (ecosystem notes §2.3): OIIO's compare in-process,
+// Golden-image comparison for GoogleTest: OIIO's compare in-process,
 // mean/max error and failing-pixel count printed, actual/expected/diff images written on
 // failure. A missing golden fails; PATHLET_UPDATE_GOLDENS=1 writes (or rewrites) goldens.
 #pragma once

@@ -264,7 +264,7 @@ TEST(FieldReaders, Hdf5BadInput) {
     expect_data_error([&] { load_velocity_field(write("text.h5", "hello")); }, "text.h5: byte 0");
 }
 
-// ---- defects an outside fuzzing run found (issue: hardening) ------------------------------
+// ---- defects an outside fuzzing run found -----------------------------------------------------
 
 TEST(FieldReaders, VtkLegacyNonIntegerCountsAreErrorsNotUndefinedBehaviour) {
     const std::string good = vtk_legacy(false);

@@ -1,4 +1,4 @@
-// pathlet quality [GRAPH]: measures of AO quality at a fixed camera (issues 13 and 25):
+// pathlet quality [GRAPH]: measures of AO quality at a fixed camera:
 // temporal flicker against the change of the geometry and of the ray-traced AO, and the error
 // of the AO against a ray-traced AO of the same frame (Embree, tubes of the visible pathlets).
 // The measuring is quality/measure.cpp (shared with the Python module); this is the command.

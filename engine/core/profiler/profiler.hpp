@@ -1,4 +1,4 @@
-// Per-pass frame profiler. Two ways to time GPU work (ecosystem notes §3):
+// Per-pass frame profiler. Two ways to time GPU work:
 //  * GlTimestamp: glQueryCounter(GL_TIMESTAMP) at every boundary, a ring of in-flight frames,
 //    results read only once available (pathlet/gpu_fence.hpp's query_ready: never stalls, and
 //    late under PATHLET_SIMULATE_GPU_LATENCY). No frame is dropped. Right for real GPUs.

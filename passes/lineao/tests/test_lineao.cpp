@@ -251,9 +251,9 @@ TEST(lineao, HalfResolutionStaysCloseToFull) {
     EXPECT_EQ(render_frame({"line_width=0.45", "lineao.resolution=half"}).ao.pixels, half.ao.pixels) << "deterministic";
 }
 
-// The default s_h (16: 29 samples) is the speed/quality trade against the study's 32
+// The default s_h (16: 29 samples) is the project's speed/quality trade against the study's 32
 // (58 samples): the bilateral filter averages the fixed per-pixel noise, so the final image must
-// stay within the bound of RMS 2/255 over covered pixels (the phantom at 720p: 0.7-0.95).
+// stay within a bound of RMS 2/255 over covered pixels (the phantom at 720p: 0.7-0.95).
 TEST(lineao, DefaultSamplesStayWithinTwoLevelsOfTheStudys) {
     Frame study = render_frame({"samples=32"});
     Frame fewer = render_frame();
