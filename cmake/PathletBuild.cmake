@@ -7,10 +7,10 @@
 #               scripts/test.sh and the lean bundle's build (another tree of the same sources).
 #   -O2         the Release level: -O3 took longer to compile and no frame faster.
 #   -Og tests   a test's own code (set-up and checks) compiles at -Og in Release; what it tests
-#               (libpathlet, the plugins, the command) is the release build. Half the compile time
-#               of -O2 per test, and the suites take no longer (docs/testing.md).
+#               (libpathlet, the plugins, the command) is the release build. A third less compile
+#               time for the tests than -O2, and the suites take no longer (docs/testing.md).
 #   gold        GCC's executables and libraries link with gold where it is found (binutils):
-#               a tenth of ld.bfd's time for a test executable, and there are a hundred of them.
+#               a tenth of ld.bfd's time for a test executable, and there are about eighty.
 #   unity       multi-file targets compile in batches (pathlet_unity_build): the headers every
 #               file includes (nlohmann/json, GLM, the standard library, the SDK) are parsed and
 #               their templates compiled once a batch instead of once a file.
